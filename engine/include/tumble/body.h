@@ -1,0 +1,50 @@
+#pragma once
+/// Bodies: their ids, kinds, mass properties and definition.
+
+#include <cstdint>
+
+#include "tumble/core/math.h"
+
+namespace tumble {
+
+/// A value handle to a body. The world owns the body; the id stays valid until the body is
+/// destroyed, and a destroyed body's id is refused (its generation no longer matches) rather than
+/// aliasing a newer body. The zero id is null.
+struct BodyId {
+    std::uint32_t index = 0;       ///< slot in the world's table
+    std::uint32_t generation = 0;  ///< 0 means null; bumped each time the slot is reused
+
+    bool isNull() const { return generation == 0; }
+    friend bool operator==(BodyId, BodyId) = default;
+};
+
+enum class BodyType : std::uint8_t {
+    Static,     ///< never moves; infinite mass
+    Kinematic,  ///< moves with the velocity the application sets; infinite mass, ignores forces
+    Dynamic,    ///< moved by forces, gravity and (later) contacts and joints
+};
+
+/// Mass properties of a body, in the body's frame.
+struct MassProperties {
+    Real mass = 1;                          ///< (kg), > 0 for a dynamic body
+    Vec3 localCenter = Vec3::Zero();        ///< centre of mass in the body frame (m)
+    Mat3 inertia = Mat3::Identity() * 0.4;  ///< about the centre of mass, body axes (kg m^2);
+                                            ///< symmetric positive definite, principal moments
+                                            ///< obeying the triangle inequality
+};
+
+/// Everything needed to create a body. Copied by World::createBody, never retained.
+struct BodyDef {
+    BodyType type = BodyType::Dynamic;
+    Vec3 position = Vec3::Zero();         ///< body origin, world frame (m)
+    Quat orientation = Quat::Identity();  ///< body to world; must be unit length (to 1e-6)
+    Vec3 linearVelocity = Vec3::Zero();   ///< of the centre of mass, world frame (m/s)
+    Vec3 angularVelocity = Vec3::Zero();  ///< world frame (rad/s)
+    MassProperties mass;                  ///< used by dynamic bodies only
+    Real linearDamping = 0;               ///< (1/s), >= 0; applied implicitly: v /= 1 + h c
+    Real angularDamping = 0;              ///< (1/s), >= 0; applied implicitly
+    Real gravityScale = 1;                ///< multiplies the world's gravity for this body
+    std::uint64_t userData = 0;           ///< opaque to the engine, handed back by World::userData
+};
+
+}  // namespace tumble

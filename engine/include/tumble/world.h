@@ -1,0 +1,138 @@
+#pragma once
+/// The world: owner of every body, and the fixed-step stepper.
+///
+/// Conventions, written once for the whole engine:
+/// - SI units; right-handed frames; gravity along -Z by default.
+/// - A body's pose is that of its origin; its centre of mass sits at MassProperties::localCenter.
+/// - Velocities are world-frame: linear of the centre of mass, angular about it.
+/// - The manifold normal (collision) points from body A to body B.
+/// - Forces and torques applied between steps act during the next step and are then cleared.
+///
+/// Threading: a World is not thread-safe; distinct worlds share nothing.
+
+#include <cstdint>
+#include <memory>
+
+#include "tumble/body.h"
+#include "tumble/core/math.h"
+
+namespace tumble {
+
+/// World settings. Checked by the World constructor and by the setters.
+struct WorldDef {
+    Vec3 gravity = Vec3(0, 0, -9.81);  ///< (m/s^2), finite
+    Real timeStep = 1.0 / 60.0;        ///< fixed step h (s), finite and > 0
+    int maxStepsPerAdvance = 8;        ///< advance() runs at most this many steps per call, >= 1
+};
+
+/// Wall-clock time spent in each stage of the last step (s).
+struct Profile {
+    double forces = 0;     ///< external forces, gravity, gyroscopic term, damping -> velocities
+    double integrate = 0;  ///< velocities -> positions and orientations
+    double finalize = 0;   ///< finiteness check, force clearing
+    double total = 0;
+};
+
+/// What a step reports. A step never throws; when it fails, the world is left exactly as it was
+/// before the step so the caller can inspect or save it.
+struct StepStatus {
+    enum class Code : std::uint8_t {
+        Ok,
+        NonFiniteState,  ///< a body's state became NaN or infinite; see `body`
+    };
+    Code code = Code::Ok;
+    BodyId body;  ///< the first offending body, when there is one
+
+    bool ok() const { return code == Code::Ok; }
+};
+
+/// What advance() did.
+struct AdvanceResult {
+    int steps = 0;         ///< whole steps taken
+    Real fraction = 0;     ///< leftover time / h, in [0, 1): interpolate poses by it for rendering
+    Real droppedTime = 0;  ///< time discarded because the step cap was reached (s)
+    StepStatus status;     ///< status of the last step taken (Ok if none)
+};
+
+class World {
+public:
+    explicit World(const WorldDef& def = {});
+    ~World();
+    World(World&&) noexcept;
+    World& operator=(World&&) noexcept;
+    World(const World&) = delete;
+    World& operator=(const World&) = delete;
+
+    // --- bodies -----------------------------------------------------------------------------
+    /// Creates a body. Refuses (InvalidArgument) a non-finite pose or velocity, a non-unit
+    /// orientation, negative damping, and for a dynamic body a mass or inertia that is not
+    /// physical. Nothing is created when the definition is refused.
+    BodyId createBody(const BodyDef& def);
+    /// Destroys a body; its id and every copy of it become invalid.
+    void destroyBody(BodyId id);
+    bool isValid(BodyId id) const;
+    int bodyCount() const;
+
+    BodyType bodyType(BodyId id) const;
+    Vec3 position(BodyId id) const;  ///< body origin (m)
+    Quat orientation(BodyId id) const;
+    Transform transform(BodyId id) const;
+    Vec3 centerOfMass(BodyId id) const;     ///< world frame (m)
+    Vec3 linearVelocity(BodyId id) const;   ///< of the centre of mass (m/s)
+    Vec3 angularVelocity(BodyId id) const;  ///< world frame (rad/s)
+    /// Velocity of a point fixed to the body, given in world coordinates (m/s).
+    Vec3 velocityAt(BodyId id, const Vec3& worldPoint) const;
+    MassProperties massProperties(BodyId id) const;
+    std::uint64_t userData(BodyId id) const;
+    /// Pose interpolated between the previous and the current step: fraction 0 gives the previous
+    /// pose, 1 the current one. For rendering between fixed steps (see advance()).
+    Transform interpolatedTransform(BodyId id, Real fraction) const;
+
+    /// Angular momentum about the centre of mass, world frame (kg m^2/s).
+    Vec3 angularMomentum(BodyId id) const;
+    /// Translational plus rotational kinetic energy (J).
+    Real kineticEnergy(BodyId id) const;
+    /// Sum over all dynamic bodies (J).
+    Real kineticEnergy() const;
+
+    void setTransform(BodyId id, const Vec3& position, const Quat& orientation);
+    /// Refused on a static body.
+    void setLinearVelocity(BodyId id, const Vec3& velocity);
+    /// Refused on a static body.
+    void setAngularVelocity(BodyId id, const Vec3& velocity);
+    void setMassProperties(BodyId id, const MassProperties& mass);
+
+    // --- forces (dynamic bodies; ignored on static and kinematic ones) -----------------------
+    /// A force (N) at a point in world coordinates (m), for the next step.
+    void applyForce(BodyId id, const Vec3& force, const Vec3& worldPoint);
+    void applyForceToCenter(BodyId id, const Vec3& force);
+    /// A torque (N m), world frame, for the next step.
+    void applyTorque(BodyId id, const Vec3& torque);
+    /// An impulse (N s) at a point in world coordinates, changing the velocity at once.
+    void applyLinearImpulse(BodyId id, const Vec3& impulse, const Vec3& worldPoint);
+    /// An angular impulse (N m s), world frame, changing the angular velocity at once.
+    void applyAngularImpulse(BodyId id, const Vec3& impulse);
+
+    // --- stepping ----------------------------------------------------------------------------
+    /// One fixed step of length settings().timeStep. Never throws.
+    StepStatus step();
+    /// Real-time driver: adds frameTime to an accumulator and runs whole steps while it holds at
+    /// least one step, at most settings().maxStepsPerAdvance of them (the excess time is dropped,
+    /// so a slow frame cannot trigger a spiral of death). frameTime (s) must be finite and >= 0.
+    AdvanceResult advance(Real frameTime);
+
+    const WorldDef& settings() const;
+    void setGravity(const Vec3& gravity);
+    void setTimeStep(Real timeStep);
+    void setMaxStepsPerAdvance(int steps);
+
+    Real time() const;                ///< simulated time (s)
+    std::uint64_t stepCount() const;  ///< steps taken so far
+    const Profile& profile() const;   ///< stage timings of the last step
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace tumble

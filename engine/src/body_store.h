@@ -1,0 +1,78 @@
+#pragma once
+/// Dense body storage behind value handles.
+///
+/// Bodies live in parallel contiguous arrays indexed by a dense `index`; ids name a slot whose
+/// generation must match. Destroying a body moves the last body into its dense index, so dense
+/// order depends only on the sequence of create/destroy calls -- never on addresses or hashing --
+/// which keeps stepping deterministic.
+
+#include <cstdint>
+#include <vector>
+
+#include "tumble/body.h"
+
+namespace tumble {
+
+/// The state the integrator reads and writes each step.
+struct BodyMotion {
+    Vec3 center = Vec3::Zero();           ///< centre of mass, world (m)
+    Quat orientation = Quat::Identity();  ///< body to world
+    Vec3 linearVelocity = Vec3::Zero();   ///< (m/s)
+    Vec3 angularVelocity = Vec3::Zero();  ///< world frame (rad/s)
+};
+
+/// Inverse mass data. Static and kinematic bodies have zero inverse mass and inertia.
+struct BodyInertia {
+    Real inverseMass = 0;                     ///< (1/kg)
+    Vec3 localCenter = Vec3::Zero();          ///< centre of mass in the body frame (m)
+    Mat3 inertiaLocal = Mat3::Zero();         ///< about the centre of mass, body axes (kg m^2)
+    Mat3 inverseInertiaLocal = Mat3::Zero();  ///< its inverse
+};
+
+struct BodyForces {
+    Vec3 force = Vec3::Zero();   ///< (N), world
+    Vec3 torque = Vec3::Zero();  ///< (N m), world, about the centre of mass
+};
+
+struct BodyInfo {
+    BodyType type = BodyType::Dynamic;
+    Real linearDamping = 0;
+    Real angularDamping = 0;
+    Real gravityScale = 1;
+    MassProperties mass;  ///< as given, for reporting
+    std::uint64_t userData = 0;
+    std::uint32_t slot = 0;  ///< back-reference to the id's slot
+};
+
+class BodyStore {
+public:
+    BodyId add(const BodyDef& def);
+    void remove(BodyId id);
+
+    bool isValid(BodyId id) const;
+    /// Dense index of a valid id; refuses (InvalidArgument) a null, stale or unknown id.
+    std::uint32_t indexOf(BodyId id) const;
+    BodyId idAt(std::uint32_t index) const;
+    std::uint32_t count() const { return static_cast<std::uint32_t>(motion.size()); }
+
+    void setMass(std::uint32_t index, const MassProperties& mass);
+
+    // Parallel arrays, all of size count().
+    std::vector<BodyMotion> motion;
+    std::vector<BodyMotion>
+        previousMotion;  ///< state before the last step: rollback + interpolation
+    std::vector<BodyInertia> inertia;
+    std::vector<BodyForces> forces;
+    std::vector<BodyInfo> info;
+
+private:
+    struct Slot {
+        std::uint32_t generation = 0;  ///< of the body living here, or of the last one that did
+        std::uint32_t dense = 0;
+        bool alive = false;
+    };
+    std::vector<Slot> slots_;
+    std::vector<std::uint32_t> freeSlots_;  ///< reused last-in first-out
+};
+
+}  // namespace tumble

@@ -1,0 +1,105 @@
+#include "checks.h"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "tumble/core/error.h"
+
+namespace tumble::checks {
+namespace {
+
+std::string format(const Vec3& v) {
+    std::ostringstream out;
+    out << '(' << v.x() << ", " << v.y() << ", " << v.z() << ')';
+    return out.str();
+}
+
+std::string format(const Quat& q) {
+    std::ostringstream out;
+    out << "(w " << q.w() << ", x " << q.x() << ", y " << q.y() << ", z " << q.z() << ')';
+    return out.str();
+}
+
+// Unit length to this tolerance: loose enough for quaternions typed with a few digits, tight
+// enough that renormalising cannot hide a real mistake.
+constexpr Real kUnitTolerance = 1e-6;
+// Relative tolerance for symmetry and the triangle inequality of an inertia tensor.
+constexpr Real kInertiaTolerance = 1e-9;
+
+}  // namespace
+
+void finiteVector(const Vec3& v, std::string_view what) {
+    if (!v.allFinite())
+        fail(what, " = ", format(v), " must be finite");
+}
+
+void unitQuaternion(const Quat& q, std::string_view what) {
+    if (!q.coeffs().allFinite())
+        fail(what, " = ", format(q), " must be finite");
+    const Real norm = q.norm();
+    if (std::abs(norm - 1) > kUnitTolerance) {
+        fail(what, " = ", format(q), " has norm ", norm,
+             "; it must be a unit quaternion (|q| = 1 to 1e-6). Note Quat(w, x, y, z) takes w "
+             "first");
+    }
+}
+
+void nonNegative(Real value, std::string_view what) {
+    if (!(std::isfinite(value) && value >= 0))
+        fail(what, " = ", value, " must be finite and >= 0");
+}
+
+void massProperties(const MassProperties& mass, std::string_view what) {
+    if (!(std::isfinite(mass.mass) && mass.mass > 0)) {
+        fail(what, ".mass = ", mass.mass, " must be finite and > 0 for a dynamic body");
+    }
+    finiteVector(mass.localCenter, std::string(what) + ".localCenter");
+    const Mat3& inertia = mass.inertia;
+    if (!inertia.allFinite())
+        fail(what, ".inertia must be finite");
+    const Real scale = inertia.cwiseAbs().maxCoeff();
+    if ((inertia - inertia.transpose()).cwiseAbs().maxCoeff() > kInertiaTolerance * scale) {
+        fail(what, ".inertia must be symmetric");
+    }
+    const Eigen::SelfAdjointEigenSolver<Mat3> solver(inertia, Eigen::EigenvaluesOnly);
+    const Vec3 moments = solver.eigenvalues();  // ascending
+    if (!(moments.x() > 0)) {
+        fail(what, ".inertia has principal moment ", moments.x(),
+             " (kg m^2); all principal moments must be > 0");
+    }
+    if (moments.z() > (moments.x() + moments.y()) * (1 + kInertiaTolerance)) {
+        fail(what, ".inertia has principal moments ", format(moments),
+             " (kg m^2); the largest exceeds the sum of the other two, which no rigid body can "
+             "have");
+    }
+}
+
+void bodyDef(const BodyDef& def) {
+    finiteVector(def.position, "BodyDef.position");
+    unitQuaternion(def.orientation, "BodyDef.orientation");
+    finiteVector(def.linearVelocity, "BodyDef.linearVelocity");
+    finiteVector(def.angularVelocity, "BodyDef.angularVelocity");
+    nonNegative(def.linearDamping, "BodyDef.linearDamping");
+    nonNegative(def.angularDamping, "BodyDef.angularDamping");
+    if (!std::isfinite(def.gravityScale))
+        fail("BodyDef.gravityScale = ", def.gravityScale, " must be finite");
+    if (def.type == BodyType::Dynamic)
+        massProperties(def.mass, "BodyDef.mass");
+}
+
+void timeStep(Real h, std::string_view what) {
+    if (!(std::isfinite(h) && h > 0))
+        fail(what, " = ", h, " (s) must be finite and > 0");
+}
+
+void worldDef(const WorldDef& def) {
+    finiteVector(def.gravity, "WorldDef.gravity");
+    timeStep(def.timeStep, "WorldDef.timeStep");
+    if (def.maxStepsPerAdvance < 1) {
+        fail("WorldDef.maxStepsPerAdvance = ", def.maxStepsPerAdvance, " must be >= 1");
+    }
+}
+
+}  // namespace tumble::checks

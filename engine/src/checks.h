@@ -1,0 +1,20 @@
+#pragma once
+/// Boundary checks for everything the application hands the world. Each refuses bad input with an
+/// InvalidArgument naming the field, the value and the rule; internal code trusts what passed.
+
+#include <string_view>
+
+#include "tumble/body.h"
+#include "tumble/world.h"
+
+namespace tumble::checks {
+
+void finiteVector(const Vec3& v, std::string_view what);
+void unitQuaternion(const Quat& q, std::string_view what);
+void nonNegative(Real value, std::string_view what);
+void massProperties(const MassProperties& mass, std::string_view what);
+void bodyDef(const BodyDef& def);
+void timeStep(Real h, std::string_view what);
+void worldDef(const WorldDef& def);
+
+}  // namespace tumble::checks

@@ -1,0 +1,325 @@
+#include "tumble/world.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "body_store.h"
+#include "checks.h"
+#include "integrator.h"
+#include "step_context.h"
+#include "tumble/core/error.h"
+
+namespace tumble {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+template <typename Stage>
+double timed(Stage&& stage) {
+    const Clock::time_point start = Clock::now();
+    stage();
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+bool isFinite(const BodyMotion& m) {
+    return m.center.allFinite() && m.orientation.coeffs().allFinite() &&
+           m.linearVelocity.allFinite() && m.angularVelocity.allFinite();
+}
+
+// advance() treats an accumulator within this fraction of h as a whole step, so frames of exactly
+// h do not skip a step to rounding.
+constexpr Real kAccumulatorSlack = 1e-9;
+
+}  // namespace
+
+struct World::Impl {
+    WorldDef settings;
+    BodyStore bodies;
+    Real time = 0;
+    std::uint64_t stepCount = 0;
+    Real accumulator = 0;
+    Profile profile;
+
+    StepContext context() const {
+        return {settings.timeStep, 1 / settings.timeStep, settings.gravity};
+    }
+
+    const BodyMotion& motion(BodyId id) const { return bodies.motion[bodies.indexOf(id)]; }
+
+    Vec3 origin(std::uint32_t index) const {
+        const BodyMotion& m = bodies.motion[index];
+        return m.center - m.orientation * bodies.inertia[index].localCenter;
+    }
+
+    // Dynamic bodies only; forces on static and kinematic bodies are ignored by design.
+    BodyForces* forcesOf(BodyId id) {
+        const std::uint32_t index = bodies.indexOf(id);
+        return bodies.info[index].type == BodyType::Dynamic ? &bodies.forces[index] : nullptr;
+    }
+
+    // Checks the new state; on a non-finite body restores the state from before the step.
+    StepStatus finalize() {
+        const std::uint32_t count = bodies.count();
+        for (std::uint32_t i = 0; i < count; ++i) {
+            if (!isFinite(bodies.motion[i])) {
+                bodies.motion = bodies.previousMotion;
+                return {StepStatus::Code::NonFiniteState, bodies.idAt(i)};
+            }
+        }
+        for (BodyForces& f : bodies.forces)
+            f = {};
+        time += settings.timeStep;
+        stepCount += 1;
+        return {};
+    }
+};
+
+World::World(const WorldDef& def) : impl_(std::make_unique<Impl>()) {
+    checks::worldDef(def);
+    impl_->settings = def;
+}
+
+World::~World() = default;
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
+
+BodyId World::createBody(const BodyDef& def) {
+    checks::bodyDef(def);
+    return impl_->bodies.add(def);
+}
+
+void World::destroyBody(BodyId id) {
+    impl_->bodies.remove(id);
+}
+bool World::isValid(BodyId id) const {
+    return impl_->bodies.isValid(id);
+}
+int World::bodyCount() const {
+    return static_cast<int>(impl_->bodies.count());
+}
+
+BodyType World::bodyType(BodyId id) const {
+    return impl_->bodies.info[impl_->bodies.indexOf(id)].type;
+}
+Vec3 World::position(BodyId id) const {
+    return impl_->origin(impl_->bodies.indexOf(id));
+}
+Quat World::orientation(BodyId id) const {
+    return impl_->motion(id).orientation;
+}
+Transform World::transform(BodyId id) const {
+    return {position(id), orientation(id)};
+}
+Vec3 World::centerOfMass(BodyId id) const {
+    return impl_->motion(id).center;
+}
+Vec3 World::linearVelocity(BodyId id) const {
+    return impl_->motion(id).linearVelocity;
+}
+Vec3 World::angularVelocity(BodyId id) const {
+    return impl_->motion(id).angularVelocity;
+}
+
+Vec3 World::velocityAt(BodyId id, const Vec3& worldPoint) const {
+    const BodyMotion& m = impl_->motion(id);
+    return m.linearVelocity + m.angularVelocity.cross(worldPoint - m.center);
+}
+
+MassProperties World::massProperties(BodyId id) const {
+    return impl_->bodies.info[impl_->bodies.indexOf(id)].mass;
+}
+std::uint64_t World::userData(BodyId id) const {
+    return impl_->bodies.info[impl_->bodies.indexOf(id)].userData;
+}
+
+Transform World::interpolatedTransform(BodyId id, Real fraction) const {
+    const std::uint32_t index = impl_->bodies.indexOf(id);
+    const BodyMotion& previous = impl_->bodies.previousMotion[index];
+    const BodyMotion& current = impl_->bodies.motion[index];
+    const Vec3& localCenter = impl_->bodies.inertia[index].localCenter;
+    Transform t;
+    t.rotation = previous.orientation.slerp(fraction, current.orientation);
+    const Vec3 center = (1 - fraction) * previous.center + fraction * current.center;
+    t.position = center - t.rotation * localCenter;
+    return t;
+}
+
+Vec3 World::angularMomentum(BodyId id) const {
+    const std::uint32_t index = impl_->bodies.indexOf(id);
+    const BodyMotion& m = impl_->bodies.motion[index];
+    const Mat3 rotation = m.orientation.toRotationMatrix();
+    return rotation *
+           (impl_->bodies.inertia[index].inertiaLocal * (rotation.transpose() * m.angularVelocity));
+}
+
+Real World::kineticEnergy(BodyId id) const {
+    const std::uint32_t index = impl_->bodies.indexOf(id);
+    const BodyInertia& inertia = impl_->bodies.inertia[index];
+    if (inertia.inverseMass == 0)
+        return 0;
+    const BodyMotion& m = impl_->bodies.motion[index];
+    const Vec3 bodyOmega = m.orientation.conjugate() * m.angularVelocity;
+    return 0.5 * m.linearVelocity.squaredNorm() / inertia.inverseMass +
+           0.5 * bodyOmega.dot(inertia.inertiaLocal * bodyOmega);
+}
+
+Real World::kineticEnergy() const {
+    Real sum = 0;
+    for (std::uint32_t i = 0; i < impl_->bodies.count(); ++i) {
+        sum += kineticEnergy(impl_->bodies.idAt(i));
+    }
+    return sum;
+}
+
+void World::setTransform(BodyId id, const Vec3& position, const Quat& orientation) {
+    const std::uint32_t index = impl_->bodies.indexOf(id);
+    checks::finiteVector(position, "setTransform position");
+    checks::unitQuaternion(orientation, "setTransform orientation");
+    BodyMotion& m = impl_->bodies.motion[index];
+    m.orientation = orientation.normalized();
+    m.center = position + m.orientation * impl_->bodies.inertia[index].localCenter;
+    // A teleport: nothing to interpolate across.
+    impl_->bodies.previousMotion[index] = m;
+}
+
+void World::setLinearVelocity(BodyId id, const Vec3& velocity) {
+    const std::uint32_t index = impl_->bodies.indexOf(id);
+    checks::finiteVector(velocity, "setLinearVelocity velocity");
+    if (impl_->bodies.info[index].type == BodyType::Static)
+        fail("setLinearVelocity: the body is static");
+    impl_->bodies.motion[index].linearVelocity = velocity;
+}
+
+void World::setAngularVelocity(BodyId id, const Vec3& velocity) {
+    const std::uint32_t index = impl_->bodies.indexOf(id);
+    checks::finiteVector(velocity, "setAngularVelocity velocity");
+    if (impl_->bodies.info[index].type == BodyType::Static)
+        fail("setAngularVelocity: the body is static");
+    impl_->bodies.motion[index].angularVelocity = velocity;
+}
+
+void World::setMassProperties(BodyId id, const MassProperties& mass) {
+    const std::uint32_t index = impl_->bodies.indexOf(id);
+    if (impl_->bodies.info[index].type == BodyType::Dynamic) {
+        checks::massProperties(mass, "setMassProperties mass");
+    }
+    impl_->bodies.setMass(index, mass);
+}
+
+void World::applyForce(BodyId id, const Vec3& force, const Vec3& worldPoint) {
+    checks::finiteVector(force, "applyForce force");
+    checks::finiteVector(worldPoint, "applyForce point");
+    if (BodyForces* f = impl_->forcesOf(id)) {
+        f->force += force;
+        f->torque += (worldPoint - centerOfMass(id)).cross(force);
+    }
+}
+
+void World::applyForceToCenter(BodyId id, const Vec3& force) {
+    checks::finiteVector(force, "applyForceToCenter force");
+    if (BodyForces* f = impl_->forcesOf(id))
+        f->force += force;
+}
+
+void World::applyTorque(BodyId id, const Vec3& torque) {
+    checks::finiteVector(torque, "applyTorque torque");
+    if (BodyForces* f = impl_->forcesOf(id))
+        f->torque += torque;
+}
+
+void World::applyLinearImpulse(BodyId id, const Vec3& impulse, const Vec3& worldPoint) {
+    checks::finiteVector(impulse, "applyLinearImpulse impulse");
+    checks::finiteVector(worldPoint, "applyLinearImpulse point");
+    const std::uint32_t index = impl_->bodies.indexOf(id);
+    if (impl_->bodies.info[index].type != BodyType::Dynamic)
+        return;
+    BodyMotion& m = impl_->bodies.motion[index];
+    m.linearVelocity += impl_->bodies.inertia[index].inverseMass * impulse;
+    applyAngularImpulse(id, (worldPoint - m.center).cross(impulse));
+}
+
+void World::applyAngularImpulse(BodyId id, const Vec3& impulse) {
+    checks::finiteVector(impulse, "applyAngularImpulse impulse");
+    const std::uint32_t index = impl_->bodies.indexOf(id);
+    if (impl_->bodies.info[index].type != BodyType::Dynamic)
+        return;
+    BodyMotion& m = impl_->bodies.motion[index];
+    const Mat3 rotation = m.orientation.toRotationMatrix();
+    m.angularVelocity += rotation * (impl_->bodies.inertia[index].inverseInertiaLocal *
+                                     (rotation.transpose() * impulse));
+}
+
+StepStatus World::step() {
+    Impl& w = *impl_;
+    const Clock::time_point start = Clock::now();
+    const StepContext context = w.context();
+    w.bodies.previousMotion = w.bodies.motion;  // same size: copies without allocating
+
+    w.profile.forces = timed([&] { integrateVelocities(w.bodies, context); });
+    // Broadphase, narrowphase, islands and the constraint solve come in here (collision/, solver/).
+    w.profile.integrate = timed([&] { integratePositions(w.bodies, context); });
+    StepStatus status;
+    w.profile.finalize = timed([&] { status = w.finalize(); });
+
+    w.profile.total = std::chrono::duration<double>(Clock::now() - start).count();
+    return status;
+}
+
+AdvanceResult World::advance(Real frameTime) {
+    if (!(std::isfinite(frameTime) && frameTime >= 0)) {
+        fail("advance frameTime = ", frameTime, " (s) must be finite and >= 0");
+    }
+    Impl& w = *impl_;
+    const Real h = w.settings.timeStep;
+    AdvanceResult result;
+    w.accumulator += frameTime;
+    while (w.accumulator >= h * (1 - kAccumulatorSlack)) {
+        if (result.steps == w.settings.maxStepsPerAdvance) {
+            // Drop whole steps beyond the cap but keep the fraction, so rendering stays smooth.
+            const Real whole = std::floor(w.accumulator / h + kAccumulatorSlack);
+            result.droppedTime = whole * h;
+            w.accumulator = std::max<Real>(0, w.accumulator - result.droppedTime);
+            break;
+        }
+        result.status = step();
+        if (!result.status.ok())
+            break;
+        w.accumulator = std::max<Real>(0, w.accumulator - h);
+        result.steps += 1;
+    }
+    result.fraction = std::min<Real>(w.accumulator / h, 1);
+    return result;
+}
+
+const WorldDef& World::settings() const {
+    return impl_->settings;
+}
+
+void World::setGravity(const Vec3& gravity) {
+    checks::finiteVector(gravity, "setGravity gravity");
+    impl_->settings.gravity = gravity;
+}
+
+void World::setTimeStep(Real timeStep) {
+    checks::timeStep(timeStep, "setTimeStep timeStep");
+    impl_->settings.timeStep = timeStep;
+    impl_->accumulator = 0;
+}
+
+void World::setMaxStepsPerAdvance(int steps) {
+    if (steps < 1)
+        fail("setMaxStepsPerAdvance steps = ", steps, " must be >= 1");
+    impl_->settings.maxStepsPerAdvance = steps;
+}
+
+Real World::time() const {
+    return impl_->time;
+}
+std::uint64_t World::stepCount() const {
+    return impl_->stepCount;
+}
+const Profile& World::profile() const {
+    return impl_->profile;
+}
+
+}  // namespace tumble

@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs what Tumble needs to build, test and benchmark, from Debian 12's packages (run as root,
+# or with sudo available). Does nothing when everything is already installed.
+set -euo pipefail
+
+packages=(
+  build-essential cmake git pkg-config   # toolchain
+  libeigen3-dev                          # linear algebra (Vec3, Quat, Mat3)
+  libccd-dev                             # GJK/EPA/MPR narrowphase
+  nlohmann-json3-dev                     # JSON reports and scene files
+  libcli11-dev                           # command lines
+  libgtest-dev libgmock-dev              # unit tests
+  libbenchmark-dev                       # micro-benchmarks
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -q
+$sudo apt-get install -y -q --no-install-recommends "${missing[@]}"

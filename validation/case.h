@@ -1,0 +1,58 @@
+#pragma once
+/// A validation case: a physical claim checked against an analytic answer or a converged
+/// reference, with its tolerances written down next to the numbers it measured.
+
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace tumble::validation {
+
+struct CaseOptions {
+    bool fast = false;  ///< a shorter sweep for ctest; the claims checked are the same
+};
+
+/// A named number. Kept in insertion order so reports read the way the case computed them.
+using Metric = std::pair<std::string, double>;
+
+/// One row of a case's table (e.g. one value of omega*h in the oscillator sweep).
+struct TableRow {
+    std::vector<Metric> values;
+};
+
+struct CaseResult {
+    std::vector<Metric> metrics;
+    std::vector<Metric> tolerances;
+    std::vector<std::string> failures;  ///< one line per broken claim; empty means passed
+    std::vector<TableRow> table;
+
+    bool passed() const { return failures.empty(); }
+    void metric(const std::string& name, double value) { metrics.emplace_back(name, value); }
+    void tolerance(const std::string& name, double value) { tolerances.emplace_back(name, value); }
+    /// Records a claim: passes when `holds`; otherwise `what` goes into the failures.
+    void check(bool holds, const std::string& what) {
+        if (!holds)
+            failures.push_back(what);
+    }
+};
+
+struct ValidationCase {
+    std::string name;
+    std::string claim;  ///< one line: what is being shown
+    std::function<CaseResult(const CaseOptions&)> run;
+};
+
+ValidationCase freeFallCase();
+ValidationCase oscillatorCase();
+ValidationCase torqueFreeCase();
+
+/// Every case, in the order the runner lists them.
+inline std::vector<ValidationCase> allCases() {
+    return {freeFallCase(), oscillatorCase(), torqueFreeCase()};
+}
+
+/// Least-squares slope of log(y) against log(x): the order of convergence.
+double logLogSlope(const std::vector<double>& x, const std::vector<double>& y);
+
+}  // namespace tumble::validation
