@@ -3,6 +3,7 @@
 
 #include <cstdint>
 
+#include "tumble/core/mass.h"
 #include "tumble/core/math.h"
 
 namespace tumble {
@@ -22,15 +23,6 @@ enum class BodyType : std::uint8_t {
     Static,     ///< never moves; infinite mass
     Kinematic,  ///< moves with the velocity the application sets; infinite mass, ignores forces
     Dynamic,    ///< moved by forces, gravity and (later) contacts and joints
-};
-
-/// Mass properties of a body, in the body's frame.
-struct MassProperties {
-    Real mass = 1;                          ///< (kg), > 0 for a dynamic body
-    Vec3 localCenter = Vec3::Zero();        ///< centre of mass in the body frame (m)
-    Mat3 inertia = Mat3::Identity() * 0.4;  ///< about the centre of mass, body axes (kg m^2);
-                                            ///< symmetric positive definite, principal moments
-                                            ///< obeying the triangle inequality
 };
 
 /// Everything needed to create a body. Copied by World::createBody, never retained.

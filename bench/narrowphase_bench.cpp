@@ -1,0 +1,1 @@
+// Placeholder: benchmarks come with the collision work in progress.

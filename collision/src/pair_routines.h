@@ -1,0 +1,26 @@
+#pragma once
+/// The narrowphase pair routines behind the dispatch table in narrowphase.cpp. Every routine has
+/// the signature of CollideFn and handles its two types in the order of its name (A's type <=
+/// B's type in ShapeType order); the manifold normal points from A to B.
+
+#include "tumble/collision/manifold.h"
+#include "tumble/collision/shape.h"
+
+namespace tumble::detail {
+
+using CollideFn = void (*)(const Shape& a, const Transform& poseA, const Shape& b,
+                           const Transform& poseB, Real margin, Manifold& out);
+
+// Closed forms (collide_spheres.cpp, collide_box.cpp, collide_half_space.cpp).
+void collideSpheres(const Shape&, const Transform&, const Shape&, const Transform&, Real, Manifold&);
+void collideSphereCapsule(const Shape&, const Transform&, const Shape&, const Transform&, Real, Manifold&);
+void collideCapsules(const Shape&, const Transform&, const Shape&, const Transform&, Real, Manifold&);
+void collideSphereBox(const Shape&, const Transform&, const Shape&, const Transform&, Real, Manifold&);
+void collideBoxes(const Shape&, const Transform&, const Shape&, const Transform&, Real, Manifold&);
+/// Any convex shape (A) against a half-space (B).
+void collideConvexHalfSpace(const Shape&, const Transform&, const Shape&, const Transform&, Real, Manifold&);
+
+// General convex pairs through libccd, then clipping (collide_convex.cpp).
+void collideConvex(const Shape&, const Transform&, const Shape&, const Transform&, Real, Manifold&);
+
+}  // namespace tumble::detail
