@@ -1,0 +1,135 @@
+#pragma once
+/// Contact constraints solved by projected Gauss-Seidel (PGS), the Stewart-Trinkle time-stepping
+/// scheme of Bullet, PhysX and Havok, with the changes that make it right for engineering use:
+///
+/// - Non-penetration: one row per contact point, impulse lambda_n >= 0, complementary to the
+///   normal velocity at the end of the step.
+/// - Friction: Coulomb. Coupled by default: the two tangent rows of a point are solved together
+///   with their 2x2 effective mass and the tangent impulse is projected onto the disc
+///   |lambda_t| <= mu lambda_n, so friction is the same in every direction. The box model (each
+///   tangent row clamped to [-mu lambda_n, mu lambda_n] on its own, as in the ESA study's Bullet)
+///   is kept as an option; it overestimates friction by up to sqrt(2) off the tangent axes.
+/// - Restitution: Newton's law v_n+ = -e v_n-, with v_n- the approach speed measured BEFORE the
+///   solve, applied after the velocity iterations as a relative-velocity target on points that
+///   carried load; below a threshold speed contacts are inelastic. It can never add more than
+///   e^2 of the approach energy.
+/// - Stabilisation: split impulse by default: penetration deeper than the slop is removed by a
+///   separate PGS on pseudo-velocities that move the positions in this step and are then
+///   discarded, so they never feed the real velocity (no energy from stabilisation). Baumgarte
+///   (bias k_erp / h * depth in the real velocity rows) is kept to reproduce the study's energy
+///   gain at impacts.
+/// - Speculative contacts: a point with separation s > 0 only demands v_n >= -s / h: the bodies
+///   may close the gap within the step but not pass it, so fast bodies do not tunnel.
+///
+/// Works on flat arrays of SolverBody (velocities, inverse masses) and ContactConstraint (indices
+/// into the body array); knows no shapes. Deterministic: constraints are solved in array order.
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "tumble/solver/solver_body.h"
+
+namespace tumble {
+
+enum class FrictionModel : std::uint8_t {
+    Coupled,  ///< disc projection: isotropic (default)
+    Box,      ///< two independent tangent rows (the study's Bullet)
+};
+
+enum class Stabilisation : std::uint8_t {
+    SplitImpulse,  ///< pseudo-velocities, never in the real velocity (default)
+    Baumgarte,     ///< bias k_erp / h * depth in the velocity rows (Bullet's default)
+};
+
+struct SolverSettings {
+    int iterations = 10;         ///< PGS sweeps over the velocity rows, >= 1
+    int positionIterations = 4;  ///< PGS sweeps over the split-impulse rows, >= 0
+    Real tolerance = 0;          ///< (m/s), >= 0: stop early when no impulse changes a velocity
+                                 ///< by more than this in a sweep; 0 runs the full budget
+    Real relaxation = 1;         ///< successive over-relaxation factor, in (0, 2)
+    FrictionModel friction = FrictionModel::Coupled;
+    Stabilisation stabilisation = Stabilisation::SplitImpulse;
+    Real baumgarte = 0.2;  ///< k_erp, dimensionless, in [0, 1]
+    Real splitImpulseFactor =
+        0.2;            ///< fraction of the depth removed per step by split impulse, (0, 1]
+    Real slop = 0.005;  ///< penetration left alone (m), >= 0
+    Real restitutionThreshold =
+        1;                  ///< approach speed below which contacts are inelastic (m/s), >= 0
+    bool warmStart = true;  ///< start from the cached impulses
+};
+
+/// Refuses (InvalidArgument) settings outside the ranges documented on each field.
+void checkSolverSettings(const SolverSettings& settings);
+
+struct ContactConstraintPoint {
+    Vec3 rA = Vec3::Zero();  ///< from A's centre of mass to the point (world, m)
+    Vec3 rB = Vec3::Zero();  ///< from B's centre of mass to the point (world, m)
+    Real separation = 0;     ///< along the normal at the start of the step (m); < 0 penetrating
+    Real normalImpulse = 0;  ///< accumulated (N s): warm start in, result out
+    std::array<Real, 2> tangentImpulse{};  ///< along tangent1, tangent2 (N s)
+
+    // Filled by prepare().
+    Real normalMass = 0;  ///< effective mass along the normal (kg)
+    Eigen::Matrix<Real, 2, 2> tangentBlock =
+        Eigen::Matrix<Real, 2,
+                      2>::Zero();     ///< K on the
+                                      ///< tangent plane: slip velocity per unit impulse (1/kg)
+    Mat3 tangentMass = Mat3::Zero();  ///< diagonal: 1 / K_tt of each tangent row (kg), box model
+    Real approachSpeed = 0;           ///< v_n before the solve (m/s), negative when approaching
+    Real maxNormalImpulse = 0;  ///< largest lambda_n during the solve: did the point carry load?
+    Real pseudoImpulse = 0;     ///< split impulse accumulated this step (N s)
+};
+
+struct ContactConstraint {
+    std::uint32_t bodyA = 0;  ///< index into the body array
+    std::uint32_t bodyB = 0;
+    Vec3 normal = Vec3::UnitZ();  ///< from A to B, unit
+    Real friction = 0;            ///< Coulomb mu, >= 0 (no friction rows when 0)
+    Real restitution = 0;         ///< Newton's e, in [0, 1]
+    int pointCount = 0;
+    std::array<ContactConstraintPoint, 4> points;
+
+    // Filled by prepare().
+    std::array<Vec3, 2> tangents{Vec3::UnitX(), Vec3::UnitY()};
+};
+
+struct SolverStats {
+    int iterations = 0;           ///< velocity sweeps actually run
+    Real maxResidual = 0;         ///< largest complementarity residual after the solve (m/s)
+    Real deepestPenetration = 0;  ///< largest -separation at the start of the step (m), >= 0
+};
+
+/// Extra velocity state for split impulse: moves positions this step only.
+struct PseudoVelocity {
+    Vec3 linear = Vec3::Zero();
+    Vec3 angular = Vec3::Zero();
+};
+
+class ContactSolver {
+public:
+    /// Solves the contacts for one step of length h. `bodies` hold the velocities after forces;
+    /// on return they hold the constrained velocities, `pseudo` the split-impulse velocities
+    /// (zero under Baumgarte) to add when integrating positions only. Impulses are written back
+    /// into `constraints` for warm starting the next step. Allocates only when the arrays grow.
+    SolverStats solve(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
+                      std::vector<PseudoVelocity>& pseudo, Real h, const SolverSettings& settings);
+
+private:
+    void prepare(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints, Real h,
+                 const SolverSettings& settings);
+    Real solveVelocitySweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
+                            const SolverSettings& settings, Real inverseH) const;
+    void applyRestitution(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
+                          const SolverSettings& settings) const;
+    void solvePositions(std::span<const SolverBody> bodies,
+                        std::span<ContactConstraint> constraints,
+                        std::vector<PseudoVelocity>& pseudo, Real inverseH,
+                        const SolverSettings& settings) const;
+    Real residual(std::span<const SolverBody> bodies,
+                  std::span<const ContactConstraint> constraints, const SolverSettings& settings,
+                  Real inverseH) const;
+};
+
+}  // namespace tumble

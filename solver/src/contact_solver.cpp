@@ -1,0 +1,320 @@
+#include "tumble/solver/contact_solver.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Eigenvalues>
+
+#include "tumble/core/error.h"
+
+namespace tumble {
+namespace {
+
+using Mat2 = Eigen::Matrix<Real, 2, 2>;
+using Vec2 = Eigen::Matrix<Real, 2, 1>;
+
+Vec3 relativeVelocity(const SolverBody& a, const SolverBody& b, const ContactConstraintPoint& p) {
+    return b.velocityAt(p.rB) - a.velocityAt(p.rA);
+}
+
+// The impulse P acts on B at rB and -P on A at rA.
+void applyPair(SolverBody& a, SolverBody& b, const ContactConstraintPoint& p, const Vec3& impulse) {
+    applyImpulse(a, -impulse, p.rA);
+    applyImpulse(b, impulse, p.rB);
+}
+
+// A unit vector perpendicular to n, a continuous function of n away from the switch between
+// reference axes: tangents follow the normal, so cached tangent impulses stay meaningful.
+Vec3 firstTangent(const Vec3& n) {
+    const Vec3 axis = std::abs(n.x()) < 0.57735
+                          ? Vec3::UnitX()
+                          : (std::abs(n.y()) < 0.57735 ? Vec3::UnitY() : Vec3::UnitZ());
+    return n.cross(axis).normalized();
+}
+
+// K = (1/mA + 1/mB) 1 - [rA]x IA^-1 [rA]x - [rB]x IB^-1 [rB]x: velocity change at the point per
+// unit impulse. Its projection on the tangent plane is the coupled friction block.
+Mat3 pointMassMatrix(const SolverBody& a, const SolverBody& b, const ContactConstraintPoint& p) {
+    const Mat3 skewA = skew(p.rA);
+    const Mat3 skewB = skew(p.rB);
+    return (a.inverseMass + b.inverseMass) * Mat3::Identity() - skewA * a.inverseInertia * skewA -
+           skewB * b.inverseInertia * skewB;
+}
+
+// Velocity the normal row aims at: close a speculative gap within the step but not beyond it;
+// under Baumgarte, also push out the penetration beyond the slop.
+Real normalTarget(const ContactConstraintPoint& p, const SolverSettings& settings, Real inverseH) {
+    if (p.separation > 0)
+        return -p.separation * inverseH;
+    if (settings.stabilisation == Stabilisation::Baumgarte) {
+        return settings.baumgarte * inverseH * std::max<Real>(0, -p.separation - settings.slop);
+    }
+    return 0;
+}
+
+// The coupled friction update of one point, solved exactly: the impulse lambda in the disc
+// |lambda| <= r that minimises  1/2 (lambda - old)' K (lambda - old) + vt' (lambda - old),
+// i.e. the best friction this point alone can apply. At its solution the slip velocity after the
+// impulse, vt + K (lambda - old), is either zero (sticking) or anti-parallel to lambda on the rim
+// (sliding): Coulomb's law with maximal dissipation, the same in every direction.
+//
+// Projecting the unconstrained answer old - K^-1 vt onto the disc instead would be cheaper but
+// wrong when K is not a multiple of the identity (contacts off the centre line): friction would
+// then oppose K^-1 vt, not vt, and a sliding box would veer.
+//
+// Sliding case: a trust-region problem; lambda(nu) = (K + nu 1)^-1 b with b = K old - vt, and the
+// multiplier nu >= 0 solves |lambda(nu)| = r. Newton on 1/|lambda(nu)| - 1/r, which is concave
+// and increasing in nu, converges monotonically from nu = 0 (More & Sorensen).
+Vec2 solveFrictionDisc(const Mat2& k, const Vec2& old, const Vec2& vt, Real radius) {
+    if (radius <= 0)
+        return Vec2::Zero();
+    const Vec2 b = k * old - vt;
+    const Vec2 free = k.inverse() * b;
+    if (free.squaredNorm() <= radius * radius)
+        return free;
+    const Eigen::SelfAdjointEigenSolver<Mat2> eigen(k);
+    const Vec2 moments = eigen.eigenvalues();
+    const Vec2 c = eigen.eigenvectors().transpose() * b;
+    Real nu = 0;
+    for (int iteration = 0; iteration < 20; ++iteration) {
+        const Vec2 q = c.cwiseQuotient(moments + Vec2::Constant(nu));  // lambda in the eigenbasis
+        const Real length = q.norm();
+        const Real derivative =
+            q.cwiseProduct(q).cwiseQuotient(moments + Vec2::Constant(nu)).sum() /
+            (length * length * length);
+        const Real step = (1 / length - 1 / radius) / derivative;
+        nu = std::max<Real>(0, nu - step);
+        if (std::abs(step) <= 1e-12 * (nu + moments.maxCoeff()))
+            break;
+    }
+    const Vec2 lambda = eigen.eigenvectors() * c.cwiseQuotient(moments + Vec2::Constant(nu));
+    return lambda * (radius / lambda.norm());  // on the rim to rounding
+}
+
+}  // namespace
+
+void checkSolverSettings(const SolverSettings& s) {
+    if (s.iterations < 1)
+        fail("SolverSettings.iterations = ", s.iterations, " must be >= 1");
+    if (s.positionIterations < 0) {
+        fail("SolverSettings.positionIterations = ", s.positionIterations, " must be >= 0");
+    }
+    if (!(std::isfinite(s.tolerance) && s.tolerance >= 0)) {
+        fail("SolverSettings.tolerance = ", s.tolerance, " (m/s) must be finite and >= 0");
+    }
+    if (!(s.relaxation > 0 && s.relaxation < 2)) {
+        fail("SolverSettings.relaxation = ", s.relaxation, " must be in (0, 2)");
+    }
+    if (!(s.baumgarte >= 0 && s.baumgarte <= 1))
+        fail("SolverSettings.baumgarte = ", s.baumgarte, " must be in [0, 1]");
+    if (!(s.splitImpulseFactor > 0 && s.splitImpulseFactor <= 1)) {
+        fail("SolverSettings.splitImpulseFactor = ", s.splitImpulseFactor, " must be in (0, 1]");
+    }
+    if (!(std::isfinite(s.slop) && s.slop >= 0))
+        fail("SolverSettings.slop = ", s.slop, " (m) must be finite and >= 0");
+    if (!(std::isfinite(s.restitutionThreshold) && s.restitutionThreshold >= 0)) {
+        fail("SolverSettings.restitutionThreshold = ", s.restitutionThreshold,
+             " (m/s) must be finite and >= 0");
+    }
+}
+
+SolverStats ContactSolver::solve(std::span<SolverBody> bodies,
+                                 std::span<ContactConstraint> constraints,
+                                 std::vector<PseudoVelocity>& pseudo, Real h,
+                                 const SolverSettings& settings) {
+    const Real inverseH = 1 / h;
+    SolverStats stats;
+    for (const ContactConstraint& c : constraints) {
+        for (int i = 0; i < c.pointCount; ++i) {
+            stats.deepestPenetration = std::max(stats.deepestPenetration, -c.points[i].separation);
+        }
+    }
+    prepare(bodies, constraints, h, settings);
+    for (stats.iterations = 0; stats.iterations < settings.iterations;) {
+        const Real largestChange = solveVelocitySweep(bodies, constraints, settings, inverseH);
+        ++stats.iterations;
+        if (settings.tolerance > 0 && largestChange <= settings.tolerance)
+            break;
+    }
+    applyRestitution(bodies, constraints, settings);
+    stats.maxResidual = residual(bodies, constraints, settings, inverseH);
+    solvePositions(bodies, constraints, pseudo, inverseH, settings);
+    return stats;
+}
+
+void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
+                            Real, const SolverSettings& settings) {
+    for (ContactConstraint& c : constraints) {
+        SolverBody& a = bodies[c.bodyA];
+        SolverBody& b = bodies[c.bodyB];
+        c.tangents[0] = firstTangent(c.normal);
+        c.tangents[1] = c.normal.cross(c.tangents[0]);
+        for (int i = 0; i < c.pointCount; ++i) {
+            ContactConstraintPoint& p = c.points[i];
+            const Mat3 k = pointMassMatrix(a, b, p);
+            const Real kNormal = c.normal.dot(k * c.normal);
+            p.normalMass = kNormal > 0 ? 1 / kNormal : 0;
+            Mat2 kTangent;
+            for (int r = 0; r < 2; ++r) {
+                for (int col = 0; col < 2; ++col)
+                    kTangent(r, col) = c.tangents[r].dot(k * c.tangents[col]);
+            }
+            p.tangentBlock = kTangent;
+            p.tangentMass.setZero();
+            p.tangentMass(0, 0) = 1 / kTangent(0, 0);
+            p.tangentMass(1, 1) = 1 / kTangent(1, 1);
+            p.approachSpeed = relativeVelocity(a, b, p).dot(c.normal);
+            p.maxNormalImpulse = 0;
+            p.pseudoImpulse = 0;
+            if (!settings.warmStart || c.friction == 0)
+                p.tangentImpulse = {0, 0};
+            if (!settings.warmStart)
+                p.normalImpulse = 0;
+            const Vec3 impulse = p.normalImpulse * c.normal + p.tangentImpulse[0] * c.tangents[0] +
+                                 p.tangentImpulse[1] * c.tangents[1];
+            applyPair(a, b, p, impulse);
+        }
+    }
+}
+
+Real ContactSolver::solveVelocitySweep(std::span<SolverBody> bodies,
+                                       std::span<ContactConstraint> constraints,
+                                       const SolverSettings& settings, Real inverseH) const {
+    const Real omega = settings.relaxation;
+    Real largestChange = 0;
+    for (ContactConstraint& c : constraints) {
+        SolverBody& a = bodies[c.bodyA];
+        SolverBody& b = bodies[c.bodyB];
+        // Friction first, with the normal impulses of the last sweep: non-penetration, solved
+        // last, matters more.
+        if (c.friction > 0) {
+            for (int i = 0; i < c.pointCount; ++i) {
+                ContactConstraintPoint& p = c.points[i];
+                const Vec3 v = relativeVelocity(a, b, p);
+                const Vec2 vt(v.dot(c.tangents[0]), v.dot(c.tangents[1]));
+                const Vec2 old(p.tangentImpulse[0], p.tangentImpulse[1]);
+                const Real limit = c.friction * p.normalImpulse;
+                Vec2 next;
+                if (settings.friction == FrictionModel::Coupled) {
+                    next = old + omega * (solveFrictionDisc(p.tangentBlock, old, vt, limit) - old);
+                } else {
+                    next = (old - omega * (p.tangentMass.topLeftCorner<2, 2>() * vt))
+                               .cwiseMax(-limit)
+                               .cwiseMin(limit);
+                }
+                const Vec2 delta = next - old;
+                applyPair(a, b, p, delta.x() * c.tangents[0] + delta.y() * c.tangents[1]);
+                p.tangentImpulse = {next.x(), next.y()};
+                largestChange = std::max(largestChange, (p.tangentBlock * delta).norm());
+            }
+        }
+        for (int i = 0; i < c.pointCount; ++i) {
+            ContactConstraintPoint& p = c.points[i];
+            const Real vn = relativeVelocity(a, b, p).dot(c.normal);
+            const Real next =
+                std::max<Real>(0, p.normalImpulse - omega * p.normalMass *
+                                                        (vn - normalTarget(p, settings, inverseH)));
+            const Real delta = next - p.normalImpulse;
+            applyPair(a, b, p, delta * c.normal);
+            p.normalImpulse = next;
+            p.maxNormalImpulse = std::max(p.maxNormalImpulse, next);
+            if (p.normalMass > 0)
+                largestChange = std::max(largestChange, std::abs(delta) / p.normalMass);
+        }
+    }
+    return largestChange;
+}
+
+void ContactSolver::applyRestitution(std::span<SolverBody> bodies,
+                                     std::span<ContactConstraint> constraints,
+                                     const SolverSettings& settings) const {
+    // Sweeps like the velocity solve, because the points of one manifold share their bodies: a
+    // single pass over four landing corners would tip the body, the first corners bouncing
+    // before the last have been seen.
+    for (int sweep = 0; sweep < settings.iterations; ++sweep) {
+        Real largestChange = 0;
+        for (ContactConstraint& c : constraints) {
+            if (c.restitution == 0)
+                continue;
+            SolverBody& a = bodies[c.bodyA];
+            SolverBody& b = bodies[c.bodyB];
+            for (int i = 0; i < c.pointCount; ++i) {
+                ContactConstraintPoint& p = c.points[i];
+                // Only points that were approaching fast and actually stopped something bounce.
+                if (p.approachSpeed > -settings.restitutionThreshold || p.maxNormalImpulse == 0)
+                    continue;
+                const Real vn = relativeVelocity(a, b, p).dot(c.normal);
+                const Real target = -c.restitution * p.approachSpeed;
+                const Real next = std::max<Real>(0, p.normalImpulse - p.normalMass * (vn - target));
+                applyPair(a, b, p, (next - p.normalImpulse) * c.normal);
+                if (p.normalMass > 0)
+                    largestChange =
+                        std::max(largestChange, std::abs(next - p.normalImpulse) / p.normalMass);
+                p.normalImpulse = next;
+            }
+        }
+        if (largestChange <= std::max(settings.tolerance, Real(1e-12)))
+            break;
+    }
+}
+
+void ContactSolver::solvePositions(std::span<const SolverBody> bodies,
+                                   std::span<ContactConstraint> constraints,
+                                   std::vector<PseudoVelocity>& pseudo, Real inverseH,
+                                   const SolverSettings& settings) const {
+    pseudo.assign(bodies.size(), PseudoVelocity{});
+    if (settings.stabilisation != Stabilisation::SplitImpulse)
+        return;
+    for (int sweep = 0; sweep < settings.positionIterations; ++sweep) {
+        for (ContactConstraint& c : constraints) {
+            const SolverBody& a = bodies[c.bodyA];
+            const SolverBody& b = bodies[c.bodyB];
+            PseudoVelocity& pa = pseudo[c.bodyA];
+            PseudoVelocity& pb = pseudo[c.bodyB];
+            for (int i = 0; i < c.pointCount; ++i) {
+                ContactConstraintPoint& p = c.points[i];
+                const Real depth = -p.separation - settings.slop;
+                if (depth <= 0)
+                    continue;
+                const Vec3 v =
+                    (pb.linear + pb.angular.cross(p.rB)) - (pa.linear + pa.angular.cross(p.rA));
+                const Real target = settings.splitImpulseFactor * inverseH * depth;
+                const Real next =
+                    std::max<Real>(0, p.pseudoImpulse - p.normalMass * (v.dot(c.normal) - target));
+                const Vec3 impulse = (next - p.pseudoImpulse) * c.normal;
+                p.pseudoImpulse = next;
+                pa.linear -= a.inverseMass * impulse;
+                pa.angular -= a.inverseInertia * p.rA.cross(impulse);
+                pb.linear += b.inverseMass * impulse;
+                pb.angular += b.inverseInertia * p.rB.cross(impulse);
+            }
+        }
+    }
+}
+
+Real ContactSolver::residual(std::span<const SolverBody> bodies,
+                             std::span<const ContactConstraint> constraints,
+                             const SolverSettings& settings, Real inverseH) const {
+    Real worst = 0;
+    for (const ContactConstraint& c : constraints) {
+        const SolverBody& a = bodies[c.bodyA];
+        const SolverBody& b = bodies[c.bodyB];
+        for (int i = 0; i < c.pointCount; ++i) {
+            const ContactConstraintPoint& p = c.points[i];
+            if (p.normalMass == 0)
+                continue;
+            const Vec3 v = relativeVelocity(a, b, p);
+            // Complementarity of the normal row, in velocity units: min(lambda / m, v_n - target)
+            // is zero at a solution (either no impulse or the target velocity met).
+            const Real gap = v.dot(c.normal) - normalTarget(p, settings, inverseH);
+            Real r = std::abs(std::min(p.normalImpulse / p.normalMass, gap));
+            // Restitution raises the target after the sweeps; a bouncing point meets it instead.
+            if (c.restitution > 0 && p.approachSpeed < -settings.restitutionThreshold)
+                r = std::min(r, std::abs(gap + c.restitution * p.approachSpeed));
+            worst = std::max(worst, r);
+        }
+    }
+    return worst;
+}
+
+}  // namespace tumble
