@@ -23,15 +23,6 @@ void applyPair(SolverBody& a, SolverBody& b, const ContactConstraintPoint& p, co
     applyImpulse(b, impulse, p.rB);
 }
 
-// A unit vector perpendicular to n, a continuous function of n away from the switch between
-// reference axes: tangents follow the normal, so cached tangent impulses stay meaningful.
-Vec3 firstTangent(const Vec3& n) {
-    const Vec3 axis = std::abs(n.x()) < 0.57735
-                          ? Vec3::UnitX()
-                          : (std::abs(n.y()) < 0.57735 ? Vec3::UnitY() : Vec3::UnitZ());
-    return n.cross(axis).normalized();
-}
-
 // K = (1/mA + 1/mB) 1 - [rA]x IA^-1 [rA]x - [rB]x IB^-1 [rB]x: velocity change at the point per
 // unit impulse. Its projection on the tangent plane is the coupled friction block.
 Mat3 pointMassMatrix(const SolverBody& a, const SolverBody& b, const ContactConstraintPoint& p) {
@@ -93,6 +84,16 @@ Vec2 solveFrictionDisc(const Mat2& k, const Vec2& old, const Vec2& vt, Real radi
 
 }  // namespace
 
+std::array<Vec3, 2> frictionBasis(const Vec3& n) {
+    // The reference axis is the one least aligned with n, so the basis is a continuous function
+    // of n except where that choice switches.
+    const Vec3 axis = std::abs(n.x()) < 0.57735
+                          ? Vec3::UnitX()
+                          : (std::abs(n.y()) < 0.57735 ? Vec3::UnitY() : Vec3::UnitZ());
+    const Vec3 first = n.cross(axis).normalized();
+    return {first, n.cross(first)};
+}
+
 void checkSolverSettings(const SolverSettings& s) {
     if (s.iterations < 1)
         fail("SolverSettings.iterations = ", s.iterations, " must be >= 1");
@@ -147,8 +148,7 @@ void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
     for (ContactConstraint& c : constraints) {
         SolverBody& a = bodies[c.bodyA];
         SolverBody& b = bodies[c.bodyB];
-        c.tangents[0] = firstTangent(c.normal);
-        c.tangents[1] = c.normal.cross(c.tangents[0]);
+        c.tangents = frictionBasis(c.normal);
         for (int i = 0; i < c.pointCount; ++i) {
             ContactConstraintPoint& p = c.points[i];
             const Mat3 k = pointMassMatrix(a, b, p);

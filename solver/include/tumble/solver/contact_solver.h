@@ -60,6 +60,11 @@ struct SolverSettings {
     bool warmStart = true;  ///< start from the cached impulses
 };
 
+/// The two friction directions the solver uses for normal n (unit): orthonormal, right-handed
+/// with n, and a deterministic function of n. Callers caching friction impulses between steps
+/// convert through it.
+std::array<Vec3, 2> frictionBasis(const Vec3& n);
+
 /// Refuses (InvalidArgument) settings outside the ranges documented on each field.
 void checkSolverSettings(const SolverSettings& settings);
 
