@@ -7,6 +7,7 @@ packages=(
   build-essential cmake git pkg-config   # toolchain
   libeigen3-dev                          # linear algebra (Vec3, Quat, Mat3)
   libccd-dev                             # GJK/EPA/MPR narrowphase
+  libqhull-dev                           # convex hulls (Qhull::qhull_r)
   nlohmann-json3-dev                     # JSON reports and scene files
   libcli11-dev                           # command lines
   libgtest-dev libgmock-dev              # unit tests

@@ -1,1 +1,445 @@
-// Placeholder: implemented by the collision work in progress.
+/// GJK distance on shape cores (our own: libccd 2.1 has no distance query) and libccd's EPA/MPR
+/// for overlapping cores. See ccd_adapter.h for the core + radius split.
+///
+/// GJK (Gilbert, Johnson, Keerthi 1988; as in van den Bergen, "Collision Detection in Interactive
+/// 3D Environments", ch. 4) searches the Minkowski difference D = A - B for its point v closest to
+/// the origin. Each iteration adds w = s_D(-v) to a simplex and replaces v by the simplex's closest
+/// point to the origin (Ericson, "Real-Time Collision Detection", 5.1.5 and 5.1.6), dropping the
+/// vertices that do not support it. |v| bounds the distance from above and v.w / |v| from below,
+/// so the loop stops when |v|^2 - v.w <= kRelativeGap |v|^2: the distance is then known to a
+/// relative 1e-13. On polytopes the loop ends exactly on the closest face after a few iterations.
+
+#include "ccd_adapter.h"
+
+#include <ccd/ccd.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <initializer_list>
+#include <limits>
+
+namespace tumble::detail {
+namespace {
+
+constexpr int kMaxGjkIterations = 64;
+constexpr Real kRelativeGap = 1e-13;  ///< GJK stop: |v|^2 - v.w <= this |v|^2
+/// Cores closer than this (m) count as touching: their closest-point direction is no longer a
+/// trustworthy normal, so the full shapes go to EPA.
+constexpr Real kCoreTouch = 1e-9;
+/// libccd's EPA stops when a new support point gains less than this (m) on the nearest face.
+constexpr Real kEpaTolerance = 1e-10;
+constexpr Real kMprTolerance = 1e-10;
+constexpr unsigned long kCcdMaxIterations = 200;
+/// After EPA, B is moved out along the normal by depth + this (m), and GJK on the now separated
+/// pair gives exact witness points (libccd's `pos` is only an average of simplex supports).
+constexpr Real kWitnessShift = 1e-3;
+constexpr int kMaxNormalRefinements = 8;
+
+/// A vertex of the GJK simplex: w = a - b with a on A's core and b on B's core (world).
+struct SimplexVertex {
+    Vec3 w, a, b;
+};
+
+struct Simplex {
+    std::array<SimplexVertex, 4> vertices;
+    std::array<Real, 4> weights{};  ///< barycentric weights of v
+    int count = 0;
+};
+
+/// A shape's core at a pose held as a rotation matrix: a world support query then costs two 3x3
+/// products instead of two quaternion rotations (which dominated the profile).
+struct PosedCore {
+    const Shape* shape;
+    Mat3 rotation;
+    Vec3 position;
+    Real radius;
+
+    PosedCore(const Shape& s, const Transform& pose)
+        : shape(&s),
+          rotation(pose.rotation.toRotationMatrix()),
+          position(pose.position),
+          radius(roundingRadius(s)) {}
+
+    /// The core's farthest point along `direction` (world, need not be unit), world frame.
+    Vec3 support(const Vec3& direction) const {
+        const Vec3 local = rotation.transpose() * direction;
+        return rotation * coreSupport(*shape, local) + position;
+    }
+};
+
+/// Keeps the simplex vertices listed in `keep` with their weights.
+void reduce(Simplex& simplex, std::initializer_list<int> keep,
+            std::initializer_list<Real> weights) {
+    Simplex reduced;
+    auto weight = weights.begin();
+    for (int index : keep) {
+        reduced.vertices[reduced.count] = simplex.vertices[index];
+        reduced.weights[reduced.count++] = *weight++;
+    }
+    simplex = reduced;
+}
+
+/// Closest point to the origin on segment (i, j) of the simplex; reduces to the supporting part.
+void closestOnSegment(Simplex& s, int i, int j) {
+    const Vec3& a = s.vertices[i].w;
+    const Vec3 ab = s.vertices[j].w - a;
+    const Real length2 = ab.squaredNorm();
+    const Real t = length2 > 0 ? -a.dot(ab) / length2 : 0;
+    if (t <= 0) {
+        reduce(s, {i}, {1});
+    } else if (t >= 1) {
+        reduce(s, {j}, {1});
+    } else {
+        reduce(s, {i, j}, {1 - t, t});
+    }
+}
+
+/// Closest point to the origin on triangle (i, j, k) by Voronoi regions (Ericson 5.1.5 with p = 0).
+void closestOnTriangle(Simplex& s, int i, int j, int k) {
+    const Vec3& a = s.vertices[i].w;
+    const Vec3& b = s.vertices[j].w;
+    const Vec3& c = s.vertices[k].w;
+    const Vec3 ab = b - a, ac = c - a;
+    const Real d1 = -ab.dot(a), d2 = -ac.dot(a);
+    if (d1 <= 0 && d2 <= 0)
+        return reduce(s, {i}, {1});
+    const Real d3 = -ab.dot(b), d4 = -ac.dot(b);
+    if (d3 >= 0 && d4 <= d3)
+        return reduce(s, {j}, {1});
+    const Real vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+        const Real t = d1 / (d1 - d3);
+        return reduce(s, {i, j}, {1 - t, t});
+    }
+    const Real d5 = -ab.dot(c), d6 = -ac.dot(c);
+    if (d6 >= 0 && d5 <= d6)
+        return reduce(s, {k}, {1});
+    const Real vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+        const Real t = d2 / (d2 - d6);
+        return reduce(s, {i, k}, {1 - t, t});
+    }
+    const Real va = d3 * d6 - d5 * d4;
+    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
+        const Real t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return reduce(s, {j, k}, {1 - t, t});
+    }
+    const Real sum = va + vb + vc;
+    if (!(sum > 0))
+        return closestOnSegment(s, i, j);  // degenerate triangle: rounding only
+    const Real v = vb / sum, w = vc / sum;
+    reduce(s, {i, j, k}, {1 - v - w, v, w});
+}
+
+/// Closest point to the origin on the tetrahedron (Ericson 5.1.6): the best of the faces whose
+/// plane separates the origin from the opposite vertex. Returns false when the origin is inside.
+bool closestOnTetrahedron(Simplex& s) {
+    static constexpr int kFaces[4][4] = {{0, 1, 2, 3}, {0, 2, 3, 1}, {0, 3, 1, 2}, {1, 3, 2, 0}};
+    Simplex best;
+    Real bestDistance2 = std::numeric_limits<Real>::infinity();
+    bool outsideAny = false;
+    for (const auto& face : kFaces) {
+        const Vec3& a = s.vertices[face[0]].w;
+        const Vec3 normal = (s.vertices[face[1]].w - a).cross(s.vertices[face[2]].w - a);
+        const Real signOrigin = -normal.dot(a);
+        const Real signOpposite = normal.dot(s.vertices[face[3]].w - a);
+        // A flat tetrahedron (signOpposite == 0) cannot enclose anything: test every face.
+        if (signOrigin * signOpposite > 0 && signOpposite != 0)
+            continue;
+        outsideAny = true;
+        Simplex candidate = s;
+        closestOnTriangle(candidate, face[0], face[1], face[2]);
+        Vec3 v = Vec3::Zero();
+        for (int n = 0; n < candidate.count; ++n)
+            v += candidate.weights[n] * candidate.vertices[n].w;
+        if (v.squaredNorm() < bestDistance2) {
+            bestDistance2 = v.squaredNorm();
+            best = candidate;
+        }
+    }
+    if (outsideAny)
+        s = best;
+    return outsideAny;
+}
+
+Vec3 simplexPoint(const Simplex& s) {
+    Vec3 v = Vec3::Zero();
+    for (int n = 0; n < s.count; ++n)
+        v += s.weights[n] * s.vertices[n].w;
+    return v;
+}
+
+bool containsVertex(const Simplex& s, const Vec3& a, const Vec3& b) {
+    for (int n = 0; n < s.count; ++n) {
+        if (s.vertices[n].a == a && s.vertices[n].b == b)
+            return true;
+    }
+    return false;
+}
+
+/// GJK distance between two posed cores (see the file comment).
+CoreDistance gjk(const PosedCore& a, const PosedCore& b) {
+    Simplex simplex;
+    Vec3 direction = b.position - a.position;  // search D = A - B towards -(cA - cB)
+    if (!(direction.squaredNorm() > 0))
+        direction = Vec3::UnitX();
+    {
+        const Vec3 pa = a.support(direction);
+        const Vec3 pb = b.support(-direction);
+        simplex.vertices[0] = {pa - pb, pa, pb};
+        simplex.weights[0] = 1;
+        simplex.count = 1;
+    }
+    Vec3 v = simplex.vertices[0].w;
+    CoreDistance result;
+    for (int iteration = 1; iteration <= kMaxGjkIterations; ++iteration) {
+        result.iterations = iteration;
+        const Real vv = v.squaredNorm();
+        if (vv <= kCoreTouch * kCoreTouch) {
+            result.overlapping = true;
+            break;
+        }
+        const Vec3 pa = a.support(-v);
+        const Vec3 pb = b.support(v);
+        const Vec3 w = pa - pb;
+        if (vv - v.dot(w) <= kRelativeGap * vv)
+            break;  // no support point gets closer
+        if (containsVertex(simplex, pa, pb))
+            break;  // rounding: the same vertex again
+        const Simplex previous = simplex;
+        simplex.vertices[simplex.count++] = {w, pa, pb};
+        if (simplex.count == 4) {
+            if (!closestOnTetrahedron(simplex)) {
+                result.overlapping = true;
+                break;
+            }
+        } else if (simplex.count == 3) {
+            closestOnTriangle(simplex, 0, 1, 2);
+        } else {
+            closestOnSegment(simplex, 0, 1);
+        }
+        const Vec3 next = simplexPoint(simplex);
+        if (next.squaredNorm() >= vv) {  // no progress (rounding): keep the previous answer
+            simplex = previous;
+            break;
+        }
+        v = next;
+    }
+    result.pointA = Vec3::Zero();
+    result.pointB = Vec3::Zero();
+    for (int n = 0; n < simplex.count; ++n) {
+        result.pointA += simplex.weights[n] * simplex.vertices[n].a;
+        result.pointB += simplex.weights[n] * simplex.vertices[n].b;
+    }
+    result.distance = result.overlapping ? 0 : (result.pointA - result.pointB).norm();
+    return result;
+}
+
+// ---- libccd callbacks -------------------------------------------------------------------------
+
+Vec3 fromCcd(const ccd_vec3_t& v) {
+    return {v.v[0], v.v[1], v.v[2]};
+}
+
+void toCcd(const Vec3& v, ccd_vec3_t* out) {
+    out->v[0] = v.x();
+    out->v[1] = v.y();
+    out->v[2] = v.z();
+}
+
+/// Support of the full (rounded) shape, world frame.
+void ccdSupport(const void* object, const ccd_vec3_t* direction, ccd_vec3_t* out) {
+    const auto& o = *static_cast<const PosedCore*>(object);
+    const Vec3 d = fromCcd(*direction);
+    Vec3 point = o.support(d);
+    const Real length = d.norm();
+    if (o.radius > 0 && length > 0)
+        point += (o.radius / length) * d;
+    toCcd(point, out);
+}
+
+/// An interior point (world), which MPR starts from.
+void ccdCenter(const void* object, ccd_vec3_t* out) {
+    const auto& o = *static_cast<const PosedCore*>(object);
+    Vec3 local = Vec3::Zero();
+    if (const auto* hull = std::get_if<ConvexHull>(o.shape))
+        local = hull->data->centroid;
+    toCcd(o.rotation * local + o.position, out);
+}
+
+/// libccd's GJK starts along x by default; on symmetric configurations (a box centred on another)
+/// its simplex then holds the origin on a face and EPA returns depth 0 with a NaN direction. A
+/// start direction off every axis avoids those ties.
+void ccdFirstDirection(const void* objectA, const void* objectB, ccd_vec3_t* out) {
+    const auto& a = *static_cast<const PosedCore*>(objectA);
+    const auto& b = *static_cast<const PosedCore*>(objectB);
+    const Vec3 generic(0.2672612419124244, 0.5345224838248488, 0.8017837257372732);
+    const Vec3 between = b.position - a.position;
+    toCcd(between + (1e-3 * between.norm() + 1e-6) * generic, out);
+}
+
+/// The penetration direction libccd finds for the full shapes (world, unit, from A to B). Returns
+/// false when libccd finds them apart. libccd's depth is not used: see penetrationAlong.
+bool ccdPenetrationNormal(const PosedCore& a, const PosedCore& b, PenetrationMethod method,
+                          Vec3& normal) {
+    ccd_t ccd;
+    CCD_INIT(&ccd);
+    ccd.first_dir = ccdFirstDirection;
+    ccd.support1 = ccdSupport;
+    ccd.support2 = ccdSupport;
+    ccd.center1 = ccdCenter;
+    ccd.center2 = ccdCenter;
+    ccd.max_iterations = kCcdMaxIterations;
+    ccd.epa_tolerance = kEpaTolerance;
+    ccd.mpr_tolerance = kMprTolerance;
+    ccd_real_t depth = 0;
+    ccd_vec3_t direction, position;
+    const int status = method == PenetrationMethod::Epa
+                           ? ccdGJKPenetration(&a, &b, &ccd, &depth, &direction, &position)
+                           : ccdMPRPenetration(&a, &b, &ccd, &depth, &direction, &position);
+    if (status != 0)
+        return false;
+    // libccd's direction is the one to move B along to separate it from A: from A to B.
+    normal = fromCcd(direction);
+    const Real length = normal.norm();
+    if (!(length > 0) || !normal.allFinite())
+        return false;
+    normal /= length;
+    return true;
+}
+
+/// How far B must move along the unit `normal` to separate from A (m): the overlap of the two
+/// shapes' extents on that axis, h_A(n) + h_B(-n) with h the support function. Exact for any
+/// direction and never below the true penetration depth (the minimum over directions), so a
+/// direction from EPA or MPR that misses the minimum gives a valid, if deeper, contact. libccd's
+/// own depth can fall short of it (its EPA sometimes stops on a face that is not the nearest).
+Real penetrationAlong(const PosedCore& a, const PosedCore& b, const Vec3& normal) {
+    return normal.dot(a.support(normal) - b.support(-normal)) + a.radius + b.radius;
+}
+
+/// Fills `out` for B penetrating A, starting from libccd's `normal`, and refines that normal.
+///
+/// Moving B out along n by its exact overlap plus kWitnessShift leaves the pair apart, and GJK on
+/// it gives exact closest points and their direction n'. If n were the minimum translation
+/// direction, n' = n; otherwise the overlap along n' is smaller (the boundary of the Minkowski
+/// difference is nearer in that direction), so n' replaces n while it helps. This settles EPA's
+/// tolerance on curved shapes (cylinders, rounded cores) and costs one GJK when EPA was exact.
+/// The witness points come from the last GJK (libccd's `pos` is only an average of supports).
+void penetrationContact(const PosedCore& a, const PosedCore& b, Vec3 normal, ConvexContact& out) {
+    const Real radiusA = a.radius, radiusB = b.radius;
+    Real depth = penetrationAlong(a, b, normal);
+    out.pointA = a.support(normal) + radiusA * normal;
+    out.pointB = b.support(-normal) - radiusB * normal;
+    for (int refinement = 0; refinement < kMaxNormalRefinements; ++refinement) {
+        PosedCore moved = b;
+        const Vec3 shift = (depth + kWitnessShift) * normal;
+        moved.position += shift;
+        const CoreDistance apart = gjk(a, moved);
+        if (apart.overlapping || !(apart.distance > kCoreTouch))
+            break;
+        const Vec3 direction = (apart.pointB - apart.pointA) / apart.distance;
+        out.pointA = apart.pointA + radiusA * direction;
+        out.pointB = apart.pointB - radiusB * direction - shift;
+        const Real depthAlong = penetrationAlong(a, b, direction);
+        if (!(depthAlong < depth))
+            break;
+        depth = depthAlong;
+        normal = direction;
+    }
+    out.normal = normal;
+    out.separation = -depth;
+}
+
+}  // namespace
+
+Real roundingRadius(const Shape& shape) {
+    if (const auto* sphere = std::get_if<Sphere>(&shape))
+        return sphere->radius;
+    if (const auto* capsule = std::get_if<Capsule>(&shape))
+        return capsule->radius;
+    return 0;
+}
+
+Vec3 coreSupport(const Shape& shape, const Vec3& d) {
+    switch (typeOf(shape)) {
+        case ShapeType::Sphere:
+            return Vec3::Zero();
+        case ShapeType::Capsule: {
+            const Real h = std::get<Capsule>(shape).halfLength;
+            return {0, 0, d.z() >= 0 ? h : -h};
+        }
+        case ShapeType::Box: {
+            const Vec3& e = std::get<Box>(shape).halfExtents;
+            return {d.x() >= 0 ? e.x() : -e.x(), d.y() >= 0 ? e.y() : -e.y(),
+                    d.z() >= 0 ? e.z() : -e.z()};
+        }
+        case ShapeType::Cylinder: {
+            const auto& cylinder = std::get<Cylinder>(shape);
+            const Real radial = std::hypot(d.x(), d.y());
+            const Real z = d.z() >= 0 ? cylinder.halfLength : -cylinder.halfLength;
+            if (!(radial > 0))
+                return {0, 0, z};
+            return {cylinder.radius * d.x() / radial, cylinder.radius * d.y() / radial, z};
+        }
+        case ShapeType::ConvexHull: {
+            const HullData& hull = *std::get<ConvexHull>(shape).data;
+            std::size_t best = 0;
+            Real bestDot = -std::numeric_limits<Real>::infinity();
+            for (std::size_t i = 0; i < hull.vertices.size(); ++i) {
+                const Real dot = hull.vertices[i].dot(d);
+                if (dot > bestDot) {
+                    bestDot = dot;
+                    best = i;
+                }
+            }
+            return hull.vertices[best];
+        }
+        default:
+            return Vec3::Zero();  // half-spaces never reach the convex query
+    }
+}
+
+CoreDistance coreDistance(const Shape& a, const Transform& poseA, const Shape& b,
+                          const Transform& poseB) {
+    return gjk(PosedCore(a, poseA), PosedCore(b, poseB));
+}
+
+ConvexContact queryConvex(const Shape& a, const Transform& poseA, const Shape& b,
+                          const Transform& poseB, PenetrationMethod method) {
+    const PosedCore coreA(a, poseA), coreB(b, poseB);
+    const Real radiusA = coreA.radius, radiusB = coreB.radius;
+    const CoreDistance core = gjk(coreA, coreB);
+    ConvexContact out;
+    if (!core.overlapping && core.distance > kCoreTouch) {
+        // Exact for rounded shapes: their surfaces are the cores pushed out by the radii.
+        out.normal = (core.pointB - core.pointA) / core.distance;
+        out.separation = core.distance - radiusA - radiusB;
+        out.pointA = core.pointA + radiusA * out.normal;
+        out.pointB = core.pointB - radiusB * out.normal;
+        return out;
+    }
+    const PenetrationMethod other =
+        method == PenetrationMethod::Epa ? PenetrationMethod::Mpr : PenetrationMethod::Epa;
+    for (const PenetrationMethod tried : {method, other}) {
+        Vec3 normal = Vec3::Zero();
+        if (ccdPenetrationNormal(coreA, coreB, tried, normal)) {
+            penetrationContact(coreA, coreB, normal, out);
+            return out;
+        }
+    }
+    // Touching to within rounding (libccd sees no overlap) or both routines failed: report the
+    // contact at depth 0 along the best direction known.
+    Vec3 normal = core.pointB - core.pointA;
+    if (!(normal.norm() > kCoreTouch))
+        normal = poseB.position - poseA.position;
+    if (!(normal.norm() > 0))
+        normal = Vec3::UnitZ();
+    out.normal = normal.normalized();
+    out.separation = core.distance - radiusA - radiusB;
+    out.pointA = coreA.support(out.normal) + radiusA * out.normal;
+    out.pointB = coreB.support(-out.normal) - radiusB * out.normal;
+    return out;
+}
+
+}  // namespace tumble::detail

@@ -12,13 +12,18 @@ using CollideFn = void (*)(const Shape& a, const Transform& poseA, const Shape& 
                            const Transform& poseB, Real margin, Manifold& out);
 
 // Closed forms (collide_spheres.cpp, collide_box.cpp, collide_half_space.cpp).
-void collideSpheres(const Shape&, const Transform&, const Shape&, const Transform&, Real, Manifold&);
-void collideSphereCapsule(const Shape&, const Transform&, const Shape&, const Transform&, Real, Manifold&);
-void collideCapsules(const Shape&, const Transform&, const Shape&, const Transform&, Real, Manifold&);
-void collideSphereBox(const Shape&, const Transform&, const Shape&, const Transform&, Real, Manifold&);
+void collideSpheres(const Shape&, const Transform&, const Shape&, const Transform&, Real,
+                    Manifold&);
+void collideSphereCapsule(const Shape&, const Transform&, const Shape&, const Transform&, Real,
+                          Manifold&);
+void collideCapsules(const Shape&, const Transform&, const Shape&, const Transform&, Real,
+                     Manifold&);
+void collideSphereBox(const Shape&, const Transform&, const Shape&, const Transform&, Real,
+                      Manifold&);
 void collideBoxes(const Shape&, const Transform&, const Shape&, const Transform&, Real, Manifold&);
 /// Any convex shape (A) against a half-space (B).
-void collideConvexHalfSpace(const Shape&, const Transform&, const Shape&, const Transform&, Real, Manifold&);
+void collideConvexHalfSpace(const Shape&, const Transform&, const Shape&, const Transform&, Real,
+                            Manifold&);
 
 // General convex pairs through libccd, then clipping (collide_convex.cpp).
 void collideConvex(const Shape&, const Transform&, const Shape&, const Transform&, Real, Manifold&);

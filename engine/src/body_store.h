@@ -41,7 +41,11 @@ struct BodyInfo {
     Real gravityScale = 1;
     MassProperties mass;  ///< as given, for reporting
     std::uint64_t userData = 0;
-    std::uint32_t slot = 0;  ///< back-reference to the id's slot
+    std::uint32_t slot = 0;               ///< back-reference to the id's slot
+    std::uint32_t firstShape = kNoShape;  ///< slot of the body's first shape
+    bool massFromShapes = false;          ///< mass properties come from the shapes
+
+    static constexpr std::uint32_t kNoShape = 0xFFFFFFFF;
 };
 
 class BodyStore {

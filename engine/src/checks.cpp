@@ -89,6 +89,26 @@ void bodyDef(const BodyDef& def) {
         massProperties(def.mass, "BodyDef.mass");
 }
 
+void material(const Material& m, std::string_view what) {
+    nonNegative(m.friction, std::string(what) + ".friction");
+    if (!(m.restitution >= 0 && m.restitution <= 1)) {
+        fail(what, ".restitution = ", m.restitution, " must be in [0, 1]");
+    }
+    if (!(std::isfinite(m.density) && m.density > 0)) {
+        fail(what, ".density = ", m.density, " (kg/m^3) must be finite and > 0");
+    }
+}
+
+void shapeDef(const ShapeDef& def, BodyType bodyType) {
+    checkShape(def.geometry, "ShapeDef.geometry");
+    finiteVector(def.localPose.position, "ShapeDef.localPose.position");
+    unitQuaternion(def.localPose.rotation, "ShapeDef.localPose.rotation");
+    material(def.material, "ShapeDef.material");
+    if (typeOf(def.geometry) == ShapeType::HalfSpace && bodyType != BodyType::Static) {
+        fail("ShapeDef.geometry is a half-space, which only a static body may carry");
+    }
+}
+
 void timeStep(Real h, std::string_view what) {
     if (!(std::isfinite(h) && h > 0))
         fail(what, " = ", h, " (s) must be finite and > 0");
@@ -97,6 +117,9 @@ void timeStep(Real h, std::string_view what) {
 void worldDef(const WorldDef& def) {
     finiteVector(def.gravity, "WorldDef.gravity");
     timeStep(def.timeStep, "WorldDef.timeStep");
+    nonNegative(def.contactMargin, "WorldDef.contactMargin");
+    checkSolverSettings(def.solver);
+    nonNegative(def.aabbMargin, "WorldDef.aabbMargin");
     if (def.maxStepsPerAdvance < 1) {
         fail("WorldDef.maxStepsPerAdvance = ", def.maxStepsPerAdvance, " must be >= 1");
     }

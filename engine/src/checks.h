@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "tumble/body.h"
+#include "tumble/shape.h"
 #include "tumble/world.h"
 
 namespace tumble::checks {
@@ -14,6 +15,8 @@ void unitQuaternion(const Quat& q, std::string_view what);
 void nonNegative(Real value, std::string_view what);
 void massProperties(const MassProperties& mass, std::string_view what);
 void bodyDef(const BodyDef& def);
+void material(const Material& m, std::string_view what);
+void shapeDef(const ShapeDef& def, BodyType bodyType);
 void timeStep(Real h, std::string_view what);
 void worldDef(const WorldDef& def);
 

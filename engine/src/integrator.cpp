@@ -62,15 +62,22 @@ void integrateVelocities(BodyStore& bodies, const StepContext& context) {
     }
 }
 
-void integratePositions(BodyStore& bodies, const StepContext& context) {
+void integratePositions(BodyStore& bodies, std::span<const PseudoVelocity> pseudo,
+                        const StepContext& context) {
     const Real h = context.h;
     const std::uint32_t count = bodies.count();
     for (std::uint32_t i = 0; i < count; ++i) {
         if (bodies.info[i].type == BodyType::Static)
             continue;
         BodyMotion& m = bodies.motion[i];
-        m.center += h * m.linearVelocity;
-        const Vec3 rotationVector = h * m.angularVelocity;
+        Vec3 linear = m.linearVelocity;
+        Vec3 angular = m.angularVelocity;
+        if (!pseudo.empty()) {
+            linear += pseudo[i].linear;
+            angular += pseudo[i].angular;
+        }
+        m.center += h * linear;
+        const Vec3 rotationVector = h * angular;
         const Real angle = rotationVector.norm();
         if (angle > 0) {
             const Quat delta(Eigen::AngleAxis<Real>(angle, rotationVector / angle));

@@ -4,8 +4,11 @@
 ///     u(n+1) = u(n) + h M^-1 f(n)          integrateVelocities  (then contacts, joints: later)
 ///     s(n+1) = s(n) + h S(s) u(n+1)        integratePositions   (with the NEW velocities)
 
+#include <span>
+
 #include "body_store.h"
 #include "step_context.h"
+#include "tumble/solver/contact_solver.h"
 
 namespace tumble {
 
@@ -16,7 +19,10 @@ void integrateVelocities(BodyStore& bodies, const StepContext& context);
 /// Moves every non-static body with its velocity. Orientation: q(n+1) = exp(h w / 2) q(n), the
 /// exact rotation for a constant angular velocity over the step, then renormalised against
 /// rounding.
-void integratePositions(BodyStore& bodies, const StepContext& context);
+/// `pseudo` (one per body, or empty) holds split-impulse velocities that move the positions in
+/// this step only and are never stored.
+void integratePositions(BodyStore& bodies, std::span<const PseudoVelocity> pseudo,
+                        const StepContext& context);
 
 /// The torque-free Euler equations I dw/dt = -w x (I w) in body axes over one step, by the
 /// implicit midpoint rule:  I (w1 - w0) + h wm x (I wm) = 0,  wm = (w0 + w1) / 2.

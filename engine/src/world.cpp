@@ -3,11 +3,10 @@
 #include <chrono>
 #include <cmath>
 
-#include "body_store.h"
 #include "checks.h"
 #include "integrator.h"
-#include "step_context.h"
 #include "tumble/core/error.h"
+#include "world_impl.h"
 
 namespace tumble {
 namespace {
@@ -21,62 +20,17 @@ double timed(Stage&& stage) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-bool isFinite(const BodyMotion& m) {
-    return m.center.allFinite() && m.orientation.coeffs().allFinite() &&
-           m.linearVelocity.allFinite() && m.angularVelocity.allFinite();
-}
-
 // advance() treats an accumulator within this fraction of h as a whole step, so frames of exactly
 // h do not skip a step to rounding.
 constexpr Real kAccumulatorSlack = 1e-9;
 
 }  // namespace
 
-struct World::Impl {
-    WorldDef settings;
-    BodyStore bodies;
-    Real time = 0;
-    std::uint64_t stepCount = 0;
-    Real accumulator = 0;
-    Profile profile;
-
-    StepContext context() const {
-        return {settings.timeStep, 1 / settings.timeStep, settings.gravity};
-    }
-
-    const BodyMotion& motion(BodyId id) const { return bodies.motion[bodies.indexOf(id)]; }
-
-    Vec3 origin(std::uint32_t index) const {
-        const BodyMotion& m = bodies.motion[index];
-        return m.center - m.orientation * bodies.inertia[index].localCenter;
-    }
-
-    // Dynamic bodies only; forces on static and kinematic bodies are ignored by design.
-    BodyForces* forcesOf(BodyId id) {
-        const std::uint32_t index = bodies.indexOf(id);
-        return bodies.info[index].type == BodyType::Dynamic ? &bodies.forces[index] : nullptr;
-    }
-
-    // Checks the new state; on a non-finite body restores the state from before the step.
-    StepStatus finalize() {
-        const std::uint32_t count = bodies.count();
-        for (std::uint32_t i = 0; i < count; ++i) {
-            if (!isFinite(bodies.motion[i])) {
-                bodies.motion = bodies.previousMotion;
-                return {StepStatus::Code::NonFiniteState, bodies.idAt(i)};
-            }
-        }
-        for (BodyForces& f : bodies.forces)
-            f = {};
-        time += settings.timeStep;
-        stepCount += 1;
-        return {};
-    }
-};
-
 World::World(const WorldDef& def) : impl_(std::make_unique<Impl>()) {
     checks::worldDef(def);
     impl_->settings = def;
+    impl_->contacts.contactMargin = def.contactMargin;
+    impl_->contacts.aabbMargin = def.aabbMargin;
 }
 
 World::~World() = default;
@@ -89,6 +43,14 @@ BodyId World::createBody(const BodyDef& def) {
 }
 
 void World::destroyBody(BodyId id) {
+    const std::uint32_t index = impl_->bodies.indexOf(id);
+    std::uint32_t slot = impl_->bodies.info[index].firstShape;
+    while (slot != BodyInfo::kNoShape) {
+        const std::uint32_t next = impl_->shapes.records[slot].nextInBody;
+        impl_->contacts.removeShape(impl_->shapes, slot);
+        impl_->shapes.remove(impl_->shapes.idAt(slot));
+        slot = next;
+    }
     impl_->bodies.remove(id);
 }
 bool World::isValid(BodyId id) const {
@@ -180,6 +142,7 @@ void World::setTransform(BodyId id, const Vec3& position, const Quat& orientatio
     m.center = position + m.orientation * impl_->bodies.inertia[index].localCenter;
     // A teleport: nothing to interpolate across.
     impl_->bodies.previousMotion[index] = m;
+    impl_->refreshShapesOf(index);
 }
 
 void World::setLinearVelocity(BodyId id, const Vec3& velocity) {
@@ -204,6 +167,7 @@ void World::setMassProperties(BodyId id, const MassProperties& mass) {
         checks::massProperties(mass, "setMassProperties mass");
     }
     impl_->bodies.setMass(index, mass);
+    impl_->bodies.info[index].massFromShapes = false;
 }
 
 void World::applyForce(BodyId id, const Vec3& force, const Vec3& worldPoint) {
@@ -256,8 +220,14 @@ StepStatus World::step() {
     w.bodies.previousMotion = w.bodies.motion;  // same size: copies without allocating
 
     w.profile.forces = timed([&] { integrateVelocities(w.bodies, context); });
-    // Broadphase, narrowphase, islands and the constraint solve come in here (collision/, solver/).
-    w.profile.integrate = timed([&] { integratePositions(w.bodies, context); });
+    w.profile.broadphase = timed([&] { w.contacts.updatePairs(); });
+    w.profile.narrowphase = timed([&] { w.contacts.updateContacts(w.shapes, w.bodies, context); });
+    w.profile.solve = timed([&] {
+        w.solverStats = w.solve.run(w.bodies, w.shapes, w.contacts.mutableContacts(), context,
+                                    w.settings.solver);
+    });
+    w.profile.integrate =
+        timed([&] { integratePositions(w.bodies, w.solve.pseudoVelocities(), context); });
     StepStatus status;
     w.profile.finalize = timed([&] { status = w.finalize(); });
 
@@ -320,6 +290,15 @@ std::uint64_t World::stepCount() const {
 }
 const Profile& World::profile() const {
     return impl_->profile;
+}
+
+const SolverStats& World::solverStats() const {
+    return impl_->solverStats;
+}
+
+void World::setSolverSettings(const SolverSettings& settings) {
+    checkSolverSettings(settings);
+    impl_->settings.solver = settings;
 }
 
 }  // namespace tumble

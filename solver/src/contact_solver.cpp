@@ -166,6 +166,7 @@ void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
             p.approachSpeed = relativeVelocity(a, b, p).dot(c.normal);
             p.maxNormalImpulse = 0;
             p.pseudoImpulse = 0;
+            p.bounceCorrection = 0;
             if (!settings.warmStart || c.friction == 0)
                 p.tangentImpulse = {0, 0};
             if (!settings.warmStart)
@@ -247,6 +248,7 @@ void ContactSolver::applyRestitution(std::span<SolverBody> bodies,
                 const Real target = -c.restitution * p.approachSpeed;
                 const Real next = std::max<Real>(0, p.normalImpulse - p.normalMass * (vn - target));
                 applyPair(a, b, p, (next - p.normalImpulse) * c.normal);
+                p.bounceCorrection = p.separation > 0 ? (1 + c.restitution) * p.separation : 0;
                 if (p.normalMass > 0)
                     largestChange =
                         std::max(largestChange, std::abs(next - p.normalImpulse) / p.normalMass);
@@ -274,13 +276,17 @@ void ContactSolver::solvePositions(std::span<const SolverBody> bodies,
             for (int i = 0; i < c.pointCount; ++i) {
                 ContactConstraintPoint& p = c.points[i];
                 const Real depth = -p.separation - settings.slop;
-                if (depth <= 0)
+                const bool bounced = p.bounceCorrection > 0;
+                if (depth <= 0 && !bounced)
                     continue;
                 const Vec3 v =
                     (pb.linear + pb.angular.cross(p.rB)) - (pa.linear + pa.angular.cross(p.rA));
-                const Real target = settings.splitImpulseFactor * inverseH * depth;
-                const Real next =
-                    std::max<Real>(0, p.pseudoImpulse - p.normalMass * (v.dot(c.normal) - target));
+                // A bounced speculative point is pulled back to where the rebound began (an
+                // equality, so the impulse may be negative); a penetrating one is pushed out.
+                const Real target = bounced ? -p.bounceCorrection * inverseH
+                                            : settings.splitImpulseFactor * inverseH * depth;
+                const Real unclamped = p.pseudoImpulse - p.normalMass * (v.dot(c.normal) - target);
+                const Real next = bounced ? unclamped : std::max<Real>(0, unclamped);
                 const Vec3 impulse = (next - p.pseudoImpulse) * c.normal;
                 p.pseudoImpulse = next;
                 pa.linear -= a.inverseMass * impulse;

@@ -32,7 +32,7 @@ struct BodyDef {
     Quat orientation = Quat::Identity();  ///< body to world; must be unit length (to 1e-6)
     Vec3 linearVelocity = Vec3::Zero();   ///< of the centre of mass, world frame (m/s)
     Vec3 angularVelocity = Vec3::Zero();  ///< world frame (rad/s)
-    MassProperties mass;                  ///< used by dynamic bodies only
+    MassProperties mass{};                ///< used by dynamic bodies only
     Real linearDamping = 0;               ///< (1/s), >= 0; applied implicitly: v /= 1 + h c
     Real angularDamping = 0;              ///< (1/s), >= 0; applied implicitly
     Real gravityScale = 1;                ///< multiplies the world's gravity for this body

@@ -12,9 +12,16 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
+#include <span>
+#include <vector>
 
 #include "tumble/body.h"
+#include "tumble/contact.h"
 #include "tumble/core/math.h"
+#include "tumble/query.h"
+#include "tumble/shape.h"
+#include "tumble/solver/contact_solver.h"
 
 namespace tumble {
 
@@ -23,13 +30,25 @@ struct WorldDef {
     Vec3 gravity = Vec3(0, 0, -9.81);  ///< (m/s^2), finite
     Real timeStep = 1.0 / 60.0;        ///< fixed step h (s), finite and > 0
     int maxStepsPerAdvance = 8;        ///< advance() runs at most this many steps per call, >= 1
+    /// Speculative contact distance (m), >= 0: pairs closer than this plus the distance they can
+    /// close in one step (h |v_rel|) get contact points, so fast bodies are stopped before they
+    /// pass through each other.
+    Real contactMargin = 0.02;
+    /// Growth of the broadphase's fat boxes (m), >= 0: a shape moving less than this costs the
+    /// broadphase nothing.
+    Real aabbMargin = 0.1;
+    /// The contact solver: iterations, friction model, stabilisation, restitution threshold.
+    SolverSettings solver{};
 };
 
 /// Wall-clock time spent in each stage of the last step (s).
 struct Profile {
-    double forces = 0;     ///< external forces, gravity, gyroscopic term, damping -> velocities
-    double integrate = 0;  ///< velocities -> positions and orientations
-    double finalize = 0;   ///< finiteness check, force clearing
+    double forces = 0;       ///< external forces, gravity, gyroscopic term, damping -> velocities
+    double broadphase = 0;   ///< bounds and pair set
+    double narrowphase = 0;  ///< manifolds and the contact cache
+    double solve = 0;        ///< contact rows, PGS, restitution, split impulse
+    double integrate = 0;    ///< velocities -> positions and orientations
+    double finalize = 0;     ///< finiteness check, force clearing
     double total = 0;
 };
 
@@ -102,6 +121,39 @@ public:
     void setAngularVelocity(BodyId id, const Vec3& velocity);
     void setMassProperties(BodyId id, const MassProperties& mass);
 
+    // --- shapes and contacts -----------------------------------------------------------------
+    /// Attaches a shape to a body. Refuses a bad geometry (see checkShape), a bad material
+    /// (friction < 0, restitution outside [0, 1], density <= 0), a non-finite or non-unit local
+    /// pose, and a half-space on a non-static body. See ShapeDef::updateBodyMass.
+    ShapeId createShape(BodyId body, const ShapeDef& def);
+    /// Detaches and destroys a shape; a dynamic body whose mass came from its shapes keeps the
+    /// mass it had.
+    void destroyShape(ShapeId id);
+    bool isValid(ShapeId id) const;
+    BodyId shapeBody(ShapeId id) const;
+    const ShapeDef& shapeDef(ShapeId id) const;
+    /// The shape's world pose.
+    Transform shapeTransform(ShapeId id) const;
+    /// Tight bounding box at the shape's current pose (m).
+    Aabb shapeBounds(ShapeId id) const;
+    /// The contacts found by the last step, in a deterministic order; valid until the next step.
+    std::span<const Contact> contacts() const;
+
+    // --- queries (through the broadphase; see query.h) ----------------------------------------
+    /// The first shape hit by the segment origin + t translation, t in [0, 1].
+    std::optional<RayCastHit> castRayClosest(const Vec3& origin, const Vec3& translation,
+                                             const QueryFilter& filter = {}) const;
+    /// Every shape the segment hits, nearest first.
+    std::vector<RayCastHit> castRayAll(const Vec3& origin, const Vec3& translation,
+                                       const QueryFilter& filter = {}) const;
+    /// The shapes whose bounding boxes overlap `box`, in id order.
+    std::vector<ShapeId> overlapAabb(const Aabb& box, const QueryFilter& filter = {}) const;
+    /// The shapes that touch or penetrate `shape` placed at `pose`, in id order.
+    std::vector<ShapeId> overlapShape(const Shape& shape, const Transform& pose,
+                                      const QueryFilter& filter = {}) const;
+    /// The point of a shape closest to `point` (the point itself when inside) (m).
+    Vec3 closestPoint(ShapeId id, const Vec3& point) const;
+
     // --- forces (dynamic bodies; ignored on static and kinematic ones) -----------------------
     /// A force (N) at a point in world coordinates (m), for the next step.
     void applyForce(BodyId id, const Vec3& force, const Vec3& worldPoint);
@@ -129,6 +181,10 @@ public:
     Real time() const;                ///< simulated time (s)
     std::uint64_t stepCount() const;  ///< steps taken so far
     const Profile& profile() const;   ///< stage timings of the last step
+    /// Iterations used, largest complementarity residual and deepest penetration of the last step.
+    const SolverStats& solverStats() const;
+    /// Refuses settings outside their documented ranges (checkSolverSettings).
+    void setSolverSettings(const SolverSettings& settings);
 
 private:
     struct Impl;

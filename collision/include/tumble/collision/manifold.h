@@ -27,7 +27,8 @@ struct Manifold {
 
     void clear() { pointCount = 0; }
     void add(const Vec3& position, Real separation, std::uint32_t featureId) {
-        if (pointCount < kMaxPoints) points[pointCount++] = {position, separation, featureId};
+        if (pointCount < kMaxPoints)
+            points[pointCount++] = {position, separation, featureId};
     }
 };
 

@@ -49,11 +49,11 @@ struct HullFace {
 /// Immutable geometry of a convex polyhedron, shared between the shapes that use it. Coplanar
 /// facets are merged, so a box's hull has 6 quadrilateral faces.
 struct HullData {
-    std::vector<Vec3> vertices;                 ///< (m), local frame
+    std::vector<Vec3> vertices;  ///< (m), local frame
     std::vector<HullFace> faces;
-    std::vector<std::uint32_t> faceVertices;    ///< see HullFace
+    std::vector<std::uint32_t> faceVertices;          ///< see HullFace
     std::vector<std::array<std::uint32_t, 2>> edges;  ///< unique edges as vertex index pairs
-    Vec3 centroid = Vec3::Zero();               ///< of the solid (m)
+    Vec3 centroid = Vec3::Zero();                     ///< of the solid (m)
 };
 
 /// A convex hull of a point cloud, built with Qhull. Refuses (InvalidArgument) fewer than 4
@@ -73,9 +73,19 @@ struct HalfSpace {
 /// The order of the alternatives is the order of ShapeType and of the narrowphase table.
 using Shape = std::variant<Sphere, Capsule, Box, Cylinder, ConvexHull, HalfSpace>;
 
-enum class ShapeType : std::uint8_t { Sphere, Capsule, Box, Cylinder, ConvexHull, HalfSpace, Count };
+enum class ShapeType : std::uint8_t {
+    Sphere,
+    Capsule,
+    Box,
+    Cylinder,
+    ConvexHull,
+    HalfSpace,
+    Count
+};
 
-inline ShapeType typeOf(const Shape& shape) { return static_cast<ShapeType>(shape.index()); }
+inline ShapeType typeOf(const Shape& shape) {
+    return static_cast<ShapeType>(shape.index());
+}
 
 /// Refuses (InvalidArgument) a shape with a non-finite, zero or negative dimension, a non-unit
 /// half-space normal, or an empty hull. `where` prefixes the message (e.g. "ShapeDef.shape").
@@ -92,11 +102,19 @@ MassProperties combine(std::span<const MassProperties> parts);
 /// Moves mass properties given in a frame F into the frame in which F sits at `pose`.
 MassProperties transformed(const MassProperties& mass, const Transform& pose);
 
-/// The bounding box of the shape at `pose`. A half-space is unbounded: its box is infinite on the
-/// sides it extends to.
+/// Stands for "unbounded" in a half-space's box (m): finite, so box centres, sizes and sums stay
+/// finite where +-infinity would give NaN.
+inline constexpr Real kHalfSpaceBound = 1e30;
+
+/// The tight bounding box of the shape at `pose`. A half-space is unbounded: its box reaches
+/// +-kHalfSpaceBound on every side, except that when its world normal lies exactly along a world
+/// axis (e.g. an unrotated ground plane) the box ends at the plane on that axis.
 Aabb boundsOf(const Shape& shape, const Transform& pose);
 
-/// The point of the shape farthest along `direction` (local frame, need not be unit).
+/// The point of the shape farthest along `direction` (local frame, need not be unit). Ties go
+/// to a fixed choice (a zero component counts as positive; a hull's lowest vertex index). A
+/// half-space has no support point and is refused (InvalidArgument): pair it through the
+/// half-space routines instead.
 Vec3 support(const Shape& shape, const Vec3& direction);
 
 }  // namespace tumble

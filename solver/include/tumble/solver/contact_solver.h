@@ -11,8 +11,10 @@
 ///   is kept as an option; it overestimates friction by up to sqrt(2) off the tangent axes.
 /// - Restitution: Newton's law v_n+ = -e v_n-, with v_n- the approach speed measured BEFORE the
 ///   solve, applied after the velocity iterations as a relative-velocity target on points that
-///   carried load; below a threshold speed contacts are inelastic. It can never add more than
-///   e^2 of the approach energy.
+///   carried load; below a threshold speed contacts are inelastic. A speculative point (s > 0)
+///   that bounces would rebound from where it stands, s above the surface; the split-impulse
+///   pass moves it by -(1 + e) s instead, which puts it where a bounce at the moment of impact
+///   (t = s / |v-|) would have taken it, so bounce heights do not grow by s per impact.
 /// - Stabilisation: split impulse by default: penetration deeper than the slop is removed by a
 ///   separate PGS on pseudo-velocities that move the positions in this step and are then
 ///   discarded, so they never feed the real velocity (no energy from stabilisation). Baumgarte
@@ -85,6 +87,8 @@ struct ContactConstraintPoint {
     Real approachSpeed = 0;           ///< v_n before the solve (m/s), negative when approaching
     Real maxNormalImpulse = 0;  ///< largest lambda_n during the solve: did the point carry load?
     Real pseudoImpulse = 0;     ///< split impulse accumulated this step (N s)
+    Real bounceCorrection = 0;  ///< (m): a speculative point that bounced at separation s > 0
+                                ///< rebounds from the surface, not from s; see applyRestitution
 };
 
 struct ContactConstraint {

@@ -1,0 +1,46 @@
+#pragma once
+/// Shapes attached to bodies: ids, materials and the definition.
+
+#include <cstdint>
+
+#include "tumble/collision/shape.h"
+#include "tumble/core/math.h"
+
+namespace tumble {
+
+/// A value handle to a shape; same rules as BodyId (zero is null, generation checked).
+struct ShapeId {
+    std::uint32_t index = 0;
+    std::uint32_t generation = 0;
+
+    bool isNull() const { return generation == 0; }
+    friend bool operator==(ShapeId, ShapeId) = default;
+};
+
+/// Surface and bulk properties of a shape.
+struct Material {
+    Real friction = 0.5;   ///< Coulomb coefficient, >= 0
+    Real restitution = 0;  ///< Newton's coefficient, in [0, 1]
+    Real density = 1000;   ///< (kg/m^3), > 0; used when the shape sets its body's mass
+};
+
+/// Which shapes may touch: a and b collide when (a.category & b.mask) and (b.category & a.mask)
+/// are both non-zero.
+struct CollisionFilter {
+    std::uint32_t category = 1;
+    std::uint32_t mask = 0xFFFFFFFF;
+};
+
+/// Everything needed to attach a shape to a body. Copied by World::createShape.
+struct ShapeDef {
+    Shape geometry = Sphere{};  ///< in the shape's frame
+    Transform localPose{};      ///< the shape's frame in the body frame
+    Material material{};
+    CollisionFilter filter{};
+    /// When true (default) and the body is dynamic, the body's mass properties become those of
+    /// all its shapes at their densities (compound by the parallel-axis theorem), replacing any
+    /// mass set by hand.
+    bool updateBodyMass = true;
+};
+
+}  // namespace tumble

@@ -1,0 +1,76 @@
+#pragma once
+/// The world's private state, shared by the files that implement World (world.cpp for bodies and
+/// the step, world_shapes.cpp for shapes and contacts, world_queries.cpp for queries).
+
+#include <cstdint>
+
+#include "body_store.h"
+#include "contact_manager.h"
+#include "shape_store.h"
+#include "solve_stage.h"
+#include "step_context.h"
+#include "tumble/world.h"
+
+namespace tumble {
+
+inline bool isFinite(const BodyMotion& m) {
+    return m.center.allFinite() && m.orientation.coeffs().allFinite() &&
+           m.linearVelocity.allFinite() && m.angularVelocity.allFinite();
+}
+
+struct World::Impl {
+    WorldDef settings;
+    BodyStore bodies;
+    Real time = 0;
+    std::uint64_t stepCount = 0;
+    Real accumulator = 0;
+    Profile profile;
+    ShapeStore shapes;
+    ContactManager contacts;
+    SolveStage solve;
+    SolverStats solverStats;
+
+    StepContext context() const {
+        return {settings.timeStep, 1 / settings.timeStep, settings.gravity};
+    }
+
+    const BodyMotion& motion(BodyId id) const { return bodies.motion[bodies.indexOf(id)]; }
+
+    Vec3 origin(std::uint32_t index) const {
+        const BodyMotion& m = bodies.motion[index];
+        return m.center - m.orientation * bodies.inertia[index].localCenter;
+    }
+
+    // Dynamic bodies only; forces on static and kinematic bodies are ignored by design.
+    BodyForces* forcesOf(BodyId id) {
+        const std::uint32_t index = bodies.indexOf(id);
+        return bodies.info[index].type == BodyType::Dynamic ? &bodies.forces[index] : nullptr;
+    }
+
+    // After a teleport: the body's shapes take their new bounds at once (queries see them).
+    void refreshShapesOf(std::uint32_t bodyIndex) {
+        for (std::uint32_t slot = bodies.info[bodyIndex].firstShape; slot != BodyInfo::kNoShape;
+             slot = shapes.records[slot].nextInBody) {
+            contacts.refreshShape(shapes, slot, bodies, settings.timeStep);
+        }
+    }
+
+    // Checks the new state; on a non-finite body restores the state from before the step.
+    StepStatus finalize() {
+        const std::uint32_t count = bodies.count();
+        for (std::uint32_t i = 0; i < count; ++i) {
+            if (!isFinite(bodies.motion[i])) {
+                bodies.motion = bodies.previousMotion;
+                return {StepStatus::Code::NonFiniteState, bodies.idAt(i)};
+            }
+        }
+        for (BodyForces& f : bodies.forces)
+            f = {};
+        contacts.refreshBounds(shapes, bodies, context());
+        time += settings.timeStep;
+        stepCount += 1;
+        return {};
+    }
+};
+
+}  // namespace tumble

@@ -1,0 +1,97 @@
+// World: shapes attached to bodies, body mass from shapes, contacts.
+
+#include <vector>
+
+#include "checks.h"
+#include "tumble/core/error.h"
+#include "world_impl.h"
+
+namespace tumble {
+namespace {
+
+// The body's mass properties as the compound of its shapes at their densities.
+MassProperties compoundMass(const ShapeStore& shapes, std::uint32_t firstShape) {
+    std::vector<MassProperties> parts;
+    for (std::uint32_t slot = firstShape; slot != BodyInfo::kNoShape;
+         slot = shapes.records[slot].nextInBody) {
+        const ShapeDef& def = shapes.records[slot].def;
+        parts.push_back(transformed(massOf(def.geometry, def.material.density), def.localPose));
+    }
+    return combine(parts);
+}
+
+}  // namespace
+
+ShapeId World::createShape(BodyId body, const ShapeDef& def) {
+    Impl& w = *impl_;
+    const std::uint32_t bodyIndex = w.bodies.indexOf(body);
+    BodyInfo& info = w.bodies.info[bodyIndex];
+    checks::shapeDef(def, info.type);
+    // Compute the new mass before changing anything, so a refusal leaves the world as it was.
+    const bool updateMass = def.updateBodyMass && info.type == BodyType::Dynamic;
+    MassProperties mass;
+    if (updateMass) {
+        MassProperties parts[2] = {
+            transformed(massOf(def.geometry, def.material.density), def.localPose), {}};
+        const bool hasOthers = info.massFromShapes && info.firstShape != BodyInfo::kNoShape;
+        if (hasOthers)
+            parts[1] = compoundMass(w.shapes, info.firstShape);
+        mass = hasOthers ? combine(parts) : parts[0];
+        checks::massProperties(mass, "the body's mass from its shapes");
+    }
+
+    const ShapeId id = w.shapes.add(def, body);
+    ShapeRecord& record = w.shapes.records[id.index];
+    record.nextInBody = info.firstShape;
+    info.firstShape = id.index;
+    w.contacts.addShape(w.shapes, id.index, w.bodies, w.settings.timeStep);
+    if (updateMass) {
+        w.bodies.setMass(bodyIndex, mass);
+        info.massFromShapes = true;
+    }
+    return id;
+}
+
+void World::destroyShape(ShapeId id) {
+    Impl& w = *impl_;
+    const std::uint32_t slot = w.shapes.slotOf(id);
+    BodyInfo& info = w.bodies.info[w.bodies.indexOf(w.shapes.records[slot].body)];
+    // Unlink from the body's list.
+    if (info.firstShape == slot) {
+        info.firstShape = w.shapes.records[slot].nextInBody;
+    } else {
+        std::uint32_t previous = info.firstShape;
+        while (w.shapes.records[previous].nextInBody != slot)
+            previous = w.shapes.records[previous].nextInBody;
+        w.shapes.records[previous].nextInBody = w.shapes.records[slot].nextInBody;
+    }
+    w.contacts.removeShape(w.shapes, slot);
+    w.shapes.remove(id);
+}
+
+bool World::isValid(ShapeId id) const {
+    return impl_->shapes.isValid(id);
+}
+
+BodyId World::shapeBody(ShapeId id) const {
+    return impl_->shapes.records[impl_->shapes.slotOf(id)].body;
+}
+
+const ShapeDef& World::shapeDef(ShapeId id) const {
+    return impl_->shapes.records[impl_->shapes.slotOf(id)].def;
+}
+
+Transform World::shapeTransform(ShapeId id) const {
+    return shapePose(impl_->shapes.records[impl_->shapes.slotOf(id)], impl_->bodies);
+}
+
+Aabb World::shapeBounds(ShapeId id) const {
+    const ShapeRecord& record = impl_->shapes.records[impl_->shapes.slotOf(id)];
+    return boundsOf(record.def.geometry, shapePose(record, impl_->bodies));
+}
+
+std::span<const Contact> World::contacts() const {
+    return impl_->contacts.contacts();
+}
+
+}  // namespace tumble
