@@ -1,5 +1,5 @@
-// Micro-benchmarks of the general convex path (GJK, libccd EPA when overlapping, face clipping),
-// through the public dispatch `collide`. ns_per_pair is the cost of one call.
+// Micro-benchmarks of the general convex path (GJK; separating axes or libccd EPA when overlapping;
+// face clipping), through the public dispatch `collide`. ns_per_pair is the cost of one call.
 
 #include <benchmark/benchmark.h>
 
@@ -49,8 +49,8 @@ ConvexHull prismHull() {
     return ConvexHull::fromPoints(vertices);
 }
 
-// A cube hull resting 1 mm deep on another, twisted: GJK finds overlap, EPA the depth, clipping
-// an 8-gon reduced to 4 points.
+// A cube hull resting 1 mm deep on another, twisted: GJK finds overlap, the separating-axis pass
+// the depth, clipping an 8-gon reduced to 4 points.
 void BM_HullHullResting(benchmark::State& state) {
     runPair(state, cubeHull(0.5), {Vec3::Zero(), Quat::Identity()}, cubeHull(0.5),
             {Vec3(0.1, 0.05, 0.999), about(Vec3::UnitZ(), 0.5)});

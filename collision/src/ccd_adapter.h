@@ -6,16 +6,28 @@
 /// capsule its segment plus its radius, the others themselves (radius 0). GJK runs on the cores,
 /// which are polytopes except for cylinders, so it ends exactly on a face of the Minkowski
 /// difference and the distance of rounded shapes is exact: separation = core distance - radii.
-/// Only when the cores themselves touch or overlap is libccd asked (EPA by default) for the
-/// penetration direction; the depth is then measured exactly along it (the overlap of the support
-/// extents) and the direction refined by GJK on the pair moved apart (ccd_adapter.cpp). This file
-/// pair is the only door to libccd: no other file includes its headers.
+///
+/// When the cores touch or overlap:
+/// - both cores polytopes (box, hull, sphere centre, capsule segment): the least overlap over the
+///   separating axes (face normals of both, and the cross products of the edge pairs whose
+///   Gauss-map arcs cross) is the exact penetration depth and its axis the exact normal
+///   (ccd_adapter.cpp). gjk_epa_test measures it against brute-force separating axes on 15,000
+///   random box overlaps and 4,430 hull (and sphere/capsule-in-hull) overlaps, shallow and deep:
+///   max error 2e-15 m. libccd's EPA, on the same deep box overlaps, is deeper than the minimum
+///   in about 3 % of them, by up to 0.6 m. Cost: below EPA for boxes and hulls of up to about 20
+///   vertices; the edge-pair loop is O(edges A x edges B), so for 50- and 100-point hulls it is
+///   about 2x and 2.5x EPA's time.
+/// - a cylinder in the pair (no finite axis set): libccd is asked (EPA by default) for the
+///   direction, the depth is measured exactly along it (the overlap of the support extents) and
+///   the direction refined by GJK on the pair moved apart. The depth is then never shallower than
+///   the true one, and deeper only when EPA stops on a face of the Minkowski difference that is
+///   not the nearest and the GJK refinement cannot leave it (not measured for cylinders: there is
+///   no closed-form reference).
+/// This file pair is the only door to libccd: no other file includes its headers.
 ///
 /// EPA over MPR (measured on 5,000 random shallow box overlaps, gjk_epa_test): EPA's depth matches
 /// the separating-axis depth to 1e-12 m in every case; MPR's portal direction missed the minimum
-/// in 18 cases, by up to 5 mm. MPR is about 1.3x faster on a resting hull pair. On deep random
-/// overlaps (centres close) libccd's EPA stops on a face that is not the nearest in about 4 % of
-/// cases; the contact is then valid but deeper than the minimum.
+/// in 18 cases, by up to 5 mm.
 
 #include <cstdint>
 
@@ -23,10 +35,11 @@
 
 namespace tumble::detail {
 
-/// Which libccd routine measures penetration when the cores overlap.
+/// How penetration is measured when the cores overlap.
 enum class PenetrationMethod : std::uint8_t {
-    Epa,  ///< GJK + expanding polytope: the minimum translation distance (default)
-    Mpr   ///< Minkowski portal refinement: faster, but its direction may miss the minimum
+    Auto,  ///< separating axes for two polytope cores, else libccd's EPA (default)
+    Epa,   ///< always libccd's GJK + expanding polytope (comparison and tests)
+    Mpr    ///< always libccd's Minkowski portal refinement: its direction may miss the minimum
 };
 
 /// The answer of queryConvex. On a touching or penetrating pair the witness points are the
@@ -61,10 +74,10 @@ CoreDistance coreDistance(const Shape& a, const Transform& poseA, const Shape& b
                           const Transform& poseB);
 
 /// The separation (or penetration), normal and witness points of two convex shapes. Neither may
-/// be a half-space. Allocation-free while the cores are apart; libccd's EPA allocates when they
-/// overlap.
+/// be a half-space. Allocation-free except when libccd runs (a cylinder in an overlapping pair,
+/// or an explicit Epa/Mpr method): its EPA allocates.
 ConvexContact queryConvex(const Shape& a, const Transform& poseA, const Shape& b,
                           const Transform& poseB,
-                          PenetrationMethod method = PenetrationMethod::Epa);
+                          PenetrationMethod method = PenetrationMethod::Auto);
 
 }  // namespace tumble::detail

@@ -1,5 +1,6 @@
-/// The general convex pair: queryConvex (GJK, or libccd EPA on overlap) gives one normal and the
-/// separation; the manifold then comes from the features of both shapes along that normal.
+/// The general convex pair: queryConvex (GJK; on overlap the separating-axis depth for polytope
+/// pairs, libccd EPA otherwise) gives one normal and the separation; the manifold then comes from
+/// the features of both shapes along that normal.
 ///
 /// Each shape offers the feature most aligned with the normal (A along +n, B along -n): a box or
 /// hull face, a cylinder cap polygon (a regular kCapVertexCount-gon inscribed in the rim), a
