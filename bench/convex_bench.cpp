@@ -7,30 +7,16 @@
 #include <numbers>
 #include <vector>
 
+#include "pair_bench.h"
 #include "tumble/collision/narrowphase.h"
 
 namespace {
 
 using namespace tumble;
 
-constexpr Real kMargin = 0.02;  // (m)
-
-Quat about(const Vec3& axis, Real angle) {
-    return Quat(Eigen::AngleAxis<Real>(angle, axis.normalized()));
-}
-
-void runPair(benchmark::State& state, const Shape& a, const Transform& poseA, const Shape& b,
-             const Transform& poseB) {
-    Manifold manifold;
-    for (auto _ : state) {
-        collide(a, poseA, b, poseB, kMargin, manifold);
-        benchmark::DoNotOptimize(manifold);
-    }
-    state.counters["points"] = manifold.pointCount;
-    state.counters["ns_per_pair"] =
-        benchmark::Counter(static_cast<double>(state.iterations()),
-                           benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
-}
+using bench::about;
+using bench::kMargin;
+using bench::runPair;
 
 ConvexHull cubeHull(Real half) {
     std::vector<Vec3> corners;

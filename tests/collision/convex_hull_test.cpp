@@ -12,17 +12,14 @@
 #include <string>
 #include <vector>
 
+#include "refusal.h"
 #include "tumble/collision/shape.h"
 #include "tumble/core/error.h"
 
 namespace tumble {
 namespace {
 
-::testing::AssertionResult contains(const std::string& text, const std::string& part) {
-    if (text.find(part) != std::string::npos)
-        return ::testing::AssertionSuccess();
-    return ::testing::AssertionFailure() << "\"" << text << "\" lacks \"" << part << "\"";
-}
+using test::contains;
 
 /// The message of the InvalidArgument that fromPoints throws; fails the test if Qhull wrote
 /// anything to stderr on the way.

@@ -10,29 +10,17 @@
 #include <string>
 #include <vector>
 
+#include "refusal.h"
 #include "tumble/collision/shape.h"
 #include "tumble/core/error.h"
 
 namespace tumble {
 namespace {
 
+using test::contains;
+using test::refusal;
+
 constexpr Real kPi = std::numbers::pi;
-
-::testing::AssertionResult contains(const std::string& text, const std::string& part) {
-    if (text.find(part) != std::string::npos)
-        return ::testing::AssertionSuccess();
-    return ::testing::AssertionFailure() << "\"" << text << "\" lacks \"" << part << "\"";
-}
-
-template <typename Call>
-std::string refusal(Call&& call) {
-    try {
-        call();
-    } catch (const InvalidArgument& e) {
-        return e.what();
-    }
-    return "";
-}
 
 /// Relative agreement of mass, centre (relative to `length`) and inertia (relative to its norm).
 ::testing::AssertionResult sameMass(const MassProperties& actual, const MassProperties& expected,

@@ -9,29 +9,15 @@
 #include <string>
 #include <vector>
 
+#include "refusal.h"
 #include "tumble/collision/shape.h"
 #include "tumble/core/error.h"
 
 namespace tumble {
 namespace {
 
-/// Passes when `text` contains `part`, and shows the whole text when it does not.
-::testing::AssertionResult contains(const std::string& text, const std::string& part) {
-    if (text.find(part) != std::string::npos)
-        return ::testing::AssertionSuccess();
-    return ::testing::AssertionFailure() << "\"" << text << "\" lacks \"" << part << "\"";
-}
-
-/// The message of the InvalidArgument that `call` throws ("" if it throws none).
-template <typename Call>
-std::string refusal(Call&& call) {
-    try {
-        call();
-    } catch (const InvalidArgument& e) {
-        return e.what();
-    }
-    return "";
-}
+using test::contains;
+using test::refusal;
 
 Quat randomRotation(std::mt19937& rng) {
     std::normal_distribution<Real> normal;
