@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "tumble/collision/broadphase.h"
+#include "tumble/collision/grid_broadphase.h"
 
 namespace {
 
@@ -169,5 +170,53 @@ BENCHMARK(BM_SapBuild)
     ->Args({50000, 1})
     ->Unit(benchmark::kMillisecond)
     ->MinTime(0.1);
+
+// GridBroadphase (a SweepAndPrune per cubic cell) on the same scenes as BM_SapUpdate; its cost
+// should grow about linearly with n. Args: n, dense (0/1), fast (0/1), cell edge (m).
+void BM_GridUpdate(benchmark::State& state) {
+    const std::int64_t count = state.range(0);
+    MovingBoxes boxes(count, state.range(1) != 0, state.range(2) != 0);
+    GridBroadphase grid(static_cast<Real>(state.range(3)));
+    for (std::size_t i = 0; i < boxes.fat.size(); ++i) {
+        grid.add(boxes.fat[i], boxes.filters[i]);
+    }
+    grid.update();
+    std::int64_t moved = 0;
+    auto onRefit = [&](std::size_t i) {
+        grid.move(static_cast<std::uint32_t>(i), boxes.fat[i]);
+        ++moved;
+    };
+    for (int i = 0; i < kWarmupSteps; ++i) {
+        boxes.step(onRefit);
+        grid.update();
+    }
+    moved = 0;
+    for (auto _ : state) {
+        boxes.step(onRefit);
+        grid.update();
+        benchmark::DoNotOptimize(grid.pairs().data());
+    }
+    setCounters(state, count, static_cast<double>(grid.pairs().size()),
+                static_cast<double>(moved) / static_cast<double>(state.iterations()));
+    state.counters["cells"] = static_cast<double>(grid.cellCount());
+}
+
+void gridArgs(benchmark::internal::Benchmark* bench) {
+    bench->ArgNames({"n", "dense", "fast", "cell"});
+    for (const std::int64_t n : {1000, 10000, 50000}) {
+        for (const int dense : {0, 1}) {
+            for (const int fast : {0, 1}) {
+                bench->Args(
+                    {n, dense, fast, static_cast<std::int64_t>(GridBroadphase::kDefaultCellSize)});
+            }
+        }
+    }
+    // Cell edge sweep on the hardest scene (dense, fast) at 10k.
+    for (const std::int64_t cell : {2, 4, 16}) {
+        bench->Args({10000, 1, 1, cell});
+    }
+}
+
+BENCHMARK(BM_GridUpdate)->Apply(gridArgs)->Unit(benchmark::kMicrosecond)->MinTime(0.1);
 
 }  // namespace
