@@ -38,6 +38,8 @@
 #include <iterator>
 
 #include "tumble/collision/broadphase.h"
+
+#include "pair_set.h"
 #include "tumble/core/error.h"
 
 namespace tumble {
@@ -442,23 +444,7 @@ void SweepAndPrune::mergePairs() {
     if (added_.empty() && removed_.empty()) {
         return;
     }
-    // pairs_ = (pairs_ \ removed_) u added_, all sorted; removed_ is a subset of pairs_ and
-    // added_ is disjoint from it.
-    scratchPairs_.clear();
-    auto removedAt = removed_.begin();
-    auto addedAt = added_.begin();
-    for (const ProxyPair pair : pairs_) {
-        if (removedAt != removed_.end() && *removedAt == pair) {
-            ++removedAt;
-            continue;
-        }
-        while (addedAt != added_.end() && *addedAt < pair) {
-            scratchPairs_.push_back(*addedAt++);
-        }
-        scratchPairs_.push_back(pair);
-    }
-    scratchPairs_.insert(scratchPairs_.end(), addedAt, added_.end());
-    std::swap(pairs_, scratchPairs_);
+    detail::applyPairChanges(pairs_, added_, removed_, scratchPairs_);
 }
 
 void SweepAndPrune::releaseIds() {

@@ -21,12 +21,12 @@ bool byShapeId(ShapeId a, ShapeId b) {
 
 }  // namespace
 
-std::optional<RayCastHit> World::castRayClosest(const Vec3& origin, const Vec3& translation,
-                                                const QueryFilter& filter) const {
-    checks::finiteVector(origin, "castRayClosest origin");
-    checks::finiteVector(translation, "castRayClosest translation");
-    const Impl& w = *impl_;
-    std::optional<RayCastHit> best;
+// Casts the segment through the broadphase and calls onHit(hit, maxFraction) for every shape
+// that passes the filter and is hit within the current maxFraction; onHit returns the new
+// maxFraction (the hit's fraction to keep only nearer ones).
+template <typename OnHit>
+void World::castRay(const Impl& w, const Vec3& origin, const Vec3& translation,
+                    const QueryFilter& filter, OnHit&& onHit) {
     w.contacts.broadphase().raycast(
         origin, translation, Real(1), [&](std::uint32_t proxy, Real maxFraction) {
             const std::uint32_t slot = w.contacts.shapeOfProxy(proxy);
@@ -38,13 +38,25 @@ std::optional<RayCastHit> World::castRayClosest(const Vec3& origin, const Vec3& 
                         Ray{origin, translation, maxFraction});
             if (!hit)
                 return maxFraction;
-            // Ties go to the lower shape id, so the answer does not depend on visiting order.
-            const ShapeId id = w.shapes.idAt(slot);
-            if (best && hit->fraction == best->fraction && best->shape.index < id.index)
-                return maxFraction;
-            best = RayCastHit{id, shape.body, hit->fraction, hit->point, hit->normal};
-            return hit->fraction;
+            return onHit(
+                RayCastHit{w.shapes.idAt(slot), shape.body, hit->fraction, hit->point, hit->normal},
+                maxFraction);
         });
+}
+
+std::optional<RayCastHit> World::castRayClosest(const Vec3& origin, const Vec3& translation,
+                                                const QueryFilter& filter) const {
+    checks::finiteVector(origin, "castRayClosest origin");
+    checks::finiteVector(translation, "castRayClosest translation");
+    std::optional<RayCastHit> best;
+    castRay(*impl_, origin, translation, filter, [&](const RayCastHit& hit, Real maxFraction) {
+        // Ties go to the lower shape id, so the answer does not depend on visiting order.
+        if (best && hit.fraction == best->fraction && best->shape.index < hit.shape.index) {
+            return maxFraction;
+        }
+        best = hit;
+        return hit.fraction;
+    });
     return best;
 }
 
@@ -52,21 +64,11 @@ std::vector<RayCastHit> World::castRayAll(const Vec3& origin, const Vec3& transl
                                           const QueryFilter& filter) const {
     checks::finiteVector(origin, "castRayAll origin");
     checks::finiteVector(translation, "castRayAll translation");
-    const Impl& w = *impl_;
     std::vector<RayCastHit> hits;
-    w.contacts.broadphase().raycast(
-        origin, translation, Real(1), [&](std::uint32_t proxy, Real maxFraction) {
-            const std::uint32_t slot = w.contacts.shapeOfProxy(proxy);
-            const ShapeRecord& shape = w.shapes.records[slot];
-            if (!passes(shape, filter))
-                return maxFraction;
-            const std::optional<RayHit> hit = raycast(
-                shape.def.geometry, shapePose(shape, w.bodies), Ray{origin, translation, 1});
-            if (hit)
-                hits.push_back(
-                    {w.shapes.idAt(slot), shape.body, hit->fraction, hit->point, hit->normal});
-            return maxFraction;  // never clip: every hit is wanted
-        });
+    castRay(*impl_, origin, translation, filter, [&](const RayCastHit& hit, Real maxFraction) {
+        hits.push_back(hit);
+        return maxFraction;  // never clip: every hit is wanted
+    });
     std::sort(hits.begin(), hits.end(), [](const RayCastHit& a, const RayCastHit& b) {
         return a.fraction != b.fraction ? a.fraction < b.fraction : a.shape.index < b.shape.index;
     });

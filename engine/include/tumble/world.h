@@ -188,6 +188,9 @@ public:
 
 private:
     struct Impl;
+    template <typename OnHit>
+    static void castRay(const Impl& w, const Vec3& origin, const Vec3& translation,
+                        const QueryFilter& filter, OnHit&& onHit);
     std::unique_ptr<Impl> impl_;
 };
 
