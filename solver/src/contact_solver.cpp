@@ -5,6 +5,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "normal_block.h"
 #include "tumble/core/error.h"
 
 namespace tumble {
@@ -33,14 +34,12 @@ Mat3 pointMassMatrix(const SolverBody& a, const SolverBody& b, const ContactCons
 }
 
 // Velocity the normal row aims at: close a speculative gap within the step but not beyond it;
-// under Baumgarte, also push out the penetration beyond the slop.
-Real normalTarget(const ContactConstraintPoint& p, const SolverSettings& settings, Real inverseH) {
+// with a bias factor (Baumgarte's k_erp, or split impulse's factor in its biased sweeps), also
+// push out that fraction of the penetration beyond the slop.
+Real normalTarget(const ContactConstraintPoint& p, Real bias, Real slop, Real inverseH) {
     if (p.separation > 0)
         return -p.separation * inverseH;
-    if (settings.stabilisation == Stabilisation::Baumgarte) {
-        return settings.baumgarte * inverseH * std::max<Real>(0, -p.separation - settings.slop);
-    }
-    return 0;
+    return bias * inverseH * std::max<Real>(0, -p.separation - slop);
 }
 
 // The coupled friction update of one point, solved exactly: the impulse lambda in the disc
@@ -97,9 +96,8 @@ std::array<Vec3, 2> frictionBasis(const Vec3& n) {
 void checkSolverSettings(const SolverSettings& s) {
     if (s.iterations < 1)
         fail("SolverSettings.iterations = ", s.iterations, " must be >= 1");
-    if (s.positionIterations < 0) {
-        fail("SolverSettings.positionIterations = ", s.positionIterations, " must be >= 0");
-    }
+    if (s.relaxIterations < 0)
+        fail("SolverSettings.relaxIterations = ", s.relaxIterations, " must be >= 0");
     if (!(std::isfinite(s.tolerance) && s.tolerance >= 0)) {
         fail("SolverSettings.tolerance = ", s.tolerance, " (m/s) must be finite and >= 0");
     }
@@ -131,16 +129,40 @@ SolverStats ContactSolver::solve(std::span<SolverBody> bodies,
         }
     }
     prepare(bodies, constraints, h, settings);
-    for (stats.iterations = 0; stats.iterations < settings.iterations;) {
-        const Real largestChange = solveVelocitySweep(bodies, constraints, settings, inverseH);
-        ++stats.iterations;
-        if (settings.tolerance > 0 && largestChange <= settings.tolerance)
-            break;
+    const bool split = settings.stabilisation == Stabilisation::SplitImpulse;
+    const Real bias = split ? settings.splitImpulseFactor : settings.baumgarte;
+    stats.iterations =
+        runSweeps(bodies, constraints, settings, inverseH, bias, settings.iterations);
+    pseudo.resize(bodies.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        pseudo[i].linear = split ? bodies[i].linearVelocity : Vec3::Zero();
+        pseudo[i].angular = split ? bodies[i].angularVelocity : Vec3::Zero();
     }
-    applyRestitution(bodies, constraints, settings);
-    stats.maxResidual = residual(bodies, constraints, settings, inverseH);
-    solvePositions(bodies, constraints, pseudo, inverseH, settings);
+    if (split) {
+        runSweeps(bodies, constraints, settings, inverseH, 0, settings.relaxIterations);
+        for (std::size_t i = 0; i < bodies.size(); ++i) {
+            pseudo[i].linear -= bodies[i].linearVelocity;
+            pseudo[i].angular -= bodies[i].angularVelocity;
+        }
+    }
+    applyRestitution(bodies, constraints, settings, inverseH, split ? 0 : bias);
+    stats.maxResidual = residual(bodies, constraints, settings, inverseH, split ? 0 : bias);
+    if (split)
+        correctBounces(bodies, constraints, pseudo, inverseH, settings);
     return stats;
+}
+
+int ContactSolver::runSweeps(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
+                             const SolverSettings& settings, Real inverseH, Real bias,
+                             int sweeps) const {
+    for (int sweep = 0; sweep < sweeps;) {
+        const Real largestChange =
+            solveVelocitySweep(bodies, constraints, settings, inverseH, bias);
+        ++sweep;
+        if (settings.tolerance > 0 && largestChange <= settings.tolerance)
+            return sweep;
+    }
+    return sweeps;
 }
 
 void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
@@ -160,6 +182,8 @@ void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
                     kTangent(r, col) = c.tangents[r].dot(k * c.tangents[col]);
             }
             p.tangentBlock = kTangent;
+            p.angularA = p.rA.cross(c.normal);
+            p.angularB = p.rB.cross(c.normal);
             p.tangentMass.setZero();
             p.tangentMass(0, 0) = 1 / kTangent(0, 0);
             p.tangentMass(1, 1) = 1 / kTangent(1, 1);
@@ -175,12 +199,23 @@ void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
                                  p.tangentImpulse[1] * c.tangents[1];
             applyPair(a, b, p, impulse);
         }
+        c.normalBlock.setZero();
+        for (int i = 0; i < c.pointCount; ++i) {
+            const ContactConstraintPoint& p = c.points[i];
+            for (int j = 0; j < c.pointCount; ++j) {
+                const ContactConstraintPoint& q = c.points[j];
+                c.normalBlock(i, j) = a.inverseMass + b.inverseMass +
+                                      p.angularA.dot(a.inverseInertia * q.angularA) +
+                                      p.angularB.dot(b.inverseInertia * q.angularB);
+            }
+        }
     }
 }
 
 Real ContactSolver::solveVelocitySweep(std::span<SolverBody> bodies,
                                        std::span<ContactConstraint> constraints,
-                                       const SolverSettings& settings, Real inverseH) const {
+                                       const SolverSettings& settings, Real inverseH,
+                                       Real bias) const {
     const Real omega = settings.relaxation;
     Real largestChange = 0;
     for (ContactConstraint& c : constraints) {
@@ -209,26 +244,56 @@ Real ContactSolver::solveVelocitySweep(std::span<SolverBody> bodies,
                 largestChange = std::max(largestChange, (p.tangentBlock * delta).norm());
             }
         }
-        for (int i = 0; i < c.pointCount; ++i) {
-            ContactConstraintPoint& p = c.points[i];
-            const Real vn = relativeVelocity(a, b, p).dot(c.normal);
-            const Real next =
-                std::max<Real>(0, p.normalImpulse - omega * p.normalMass *
-                                                        (vn - normalTarget(p, settings, inverseH)));
-            const Real delta = next - p.normalImpulse;
-            applyPair(a, b, p, delta * c.normal);
-            p.normalImpulse = next;
-            p.maxNormalImpulse = std::max(p.maxNormalImpulse, next);
-            if (p.normalMass > 0)
-                largestChange = std::max(largestChange, std::abs(delta) / p.normalMass);
-        }
+        solveNormals(a, b, c, settings, inverseH, bias, largestChange);
     }
     return largestChange;
 }
 
+void ContactSolver::solveNormals(SolverBody& a, SolverBody& b, ContactConstraint& c,
+                                 const SolverSettings& settings, Real inverseH, Real bias,
+                                 Real& largestChange) const {
+    const Real omega = settings.relaxation;
+    const int n = c.pointCount;
+    Vec4 old = Vec4::Zero();
+    Vec4 next = Vec4::Zero();
+    Vec4 gap = Vec4::Zero();  // v_n - target with the current impulses (m/s)
+    for (int i = 0; i < n; ++i) {
+        const ContactConstraintPoint& p = c.points[i];
+        old(i) = p.normalImpulse;
+        gap(i) = relativeVelocity(a, b, p).dot(c.normal) -
+                 normalTarget(p, bias, settings.slop, inverseH);
+    }
+    Vec4 exact;
+    if (n > 1 && solveNormalBlock(c.normalBlock, n, gap - c.normalBlock * old, exact)) {
+        next = (old + omega * (exact - old)).cwiseMax(0);
+        for (int i = 0; i < n; ++i)
+            applyPair(a, b, c.points[i], (next(i) - old(i)) * c.normal);
+    } else {
+        // One point, or a degenerate block: the points one by one.
+        for (int i = 0; i < n; ++i) {
+            ContactConstraintPoint& p = c.points[i];
+            const Real vn = relativeVelocity(a, b, p).dot(c.normal) -
+                            normalTarget(p, bias, settings.slop, inverseH);
+            next(i) = std::max<Real>(0, old(i) - omega * p.normalMass * vn);
+            applyPair(a, b, p, (next(i) - old(i)) * c.normal);
+        }
+    }
+    for (int i = 0; i < n; ++i) {
+        ContactConstraintPoint& p = c.points[i];
+        p.normalImpulse = next(i);
+        p.maxNormalImpulse = std::max(p.maxNormalImpulse, next(i));
+    }
+    // The velocity change each point sees: a shift of load between the legs of a face, which the
+    // block's minimum-norm choice may make, moves nothing and does not count.
+    const Vec4 change = c.normalBlock * (next - old);
+    for (int i = 0; i < n; ++i)
+        largestChange = std::max(largestChange, std::abs(change(i)));
+}
+
 void ContactSolver::applyRestitution(std::span<SolverBody> bodies,
                                      std::span<ContactConstraint> constraints,
-                                     const SolverSettings& settings) const {
+                                     const SolverSettings& settings, Real inverseH,
+                                     Real baumgarteBias) const {
     // Sweeps like the velocity solve, because the points of one manifold share their bodies: a
     // single pass over four landing corners would tip the body, the first corners bouncing
     // before the last have been seen.
@@ -245,7 +310,11 @@ void ContactSolver::applyRestitution(std::span<SolverBody> bodies,
                 if (p.approachSpeed > -settings.restitutionThreshold || p.maxNormalImpulse == 0)
                     continue;
                 const Real vn = relativeVelocity(a, b, p).dot(c.normal);
-                const Real target = -c.restitution * p.approachSpeed;
+                // Under Baumgarte the bias adds to the bounce, as in the study's Bullet: the
+                // energy gain at impacts it found.
+                const Real push =
+                    p.separation < 0 ? normalTarget(p, baumgarteBias, settings.slop, inverseH) : 0;
+                const Real target = -c.restitution * p.approachSpeed + push;
                 const Real next = std::max<Real>(0, p.normalImpulse - p.normalMass * (vn - target));
                 applyPair(a, b, p, (next - p.normalImpulse) * c.normal);
                 p.bounceCorrection = p.separation > 0 ? (1 + c.restitution) * p.separation : 0;
@@ -260,14 +329,13 @@ void ContactSolver::applyRestitution(std::span<SolverBody> bodies,
     }
 }
 
-void ContactSolver::solvePositions(std::span<const SolverBody> bodies,
+void ContactSolver::correctBounces(std::span<const SolverBody> bodies,
                                    std::span<ContactConstraint> constraints,
                                    std::vector<PseudoVelocity>& pseudo, Real inverseH,
                                    const SolverSettings& settings) const {
-    pseudo.assign(bodies.size(), PseudoVelocity{});
-    if (settings.stabilisation != Stabilisation::SplitImpulse)
-        return;
-    for (int sweep = 0; sweep < settings.positionIterations; ++sweep) {
+    // A bounced speculative point is pulled back to where the rebound began: an equality on the
+    // pseudo-velocities, so the impulse may be negative.
+    for (int sweep = 0; sweep < std::max(settings.relaxIterations, 1); ++sweep) {
         for (ContactConstraint& c : constraints) {
             const SolverBody& a = bodies[c.bodyA];
             const SolverBody& b = bodies[c.bodyB];
@@ -275,18 +343,12 @@ void ContactSolver::solvePositions(std::span<const SolverBody> bodies,
             PseudoVelocity& pb = pseudo[c.bodyB];
             for (int i = 0; i < c.pointCount; ++i) {
                 ContactConstraintPoint& p = c.points[i];
-                const Real depth = -p.separation - settings.slop;
-                const bool bounced = p.bounceCorrection > 0;
-                if (depth <= 0 && !bounced)
+                if (p.bounceCorrection <= 0)
                     continue;
                 const Vec3 v =
                     (pb.linear + pb.angular.cross(p.rB)) - (pa.linear + pa.angular.cross(p.rA));
-                // A bounced speculative point is pulled back to where the rebound began (an
-                // equality, so the impulse may be negative); a penetrating one is pushed out.
-                const Real target = bounced ? -p.bounceCorrection * inverseH
-                                            : settings.splitImpulseFactor * inverseH * depth;
-                const Real unclamped = p.pseudoImpulse - p.normalMass * (v.dot(c.normal) - target);
-                const Real next = bounced ? unclamped : std::max<Real>(0, unclamped);
+                const Real target = -p.bounceCorrection * inverseH;
+                const Real next = p.pseudoImpulse - p.normalMass * (v.dot(c.normal) - target);
                 const Vec3 impulse = (next - p.pseudoImpulse) * c.normal;
                 p.pseudoImpulse = next;
                 pa.linear -= a.inverseMass * impulse;
@@ -300,7 +362,7 @@ void ContactSolver::solvePositions(std::span<const SolverBody> bodies,
 
 Real ContactSolver::residual(std::span<const SolverBody> bodies,
                              std::span<const ContactConstraint> constraints,
-                             const SolverSettings& settings, Real inverseH) const {
+                             const SolverSettings& settings, Real inverseH, Real bias) const {
     Real worst = 0;
     for (const ContactConstraint& c : constraints) {
         const SolverBody& a = bodies[c.bodyA];
@@ -312,7 +374,7 @@ Real ContactSolver::residual(std::span<const SolverBody> bodies,
             const Vec3 v = relativeVelocity(a, b, p);
             // Complementarity of the normal row, in velocity units: min(lambda / m, v_n - target)
             // is zero at a solution (either no impulse or the target velocity met).
-            const Real gap = v.dot(c.normal) - normalTarget(p, settings, inverseH);
+            const Real gap = v.dot(c.normal) - normalTarget(p, bias, settings.slop, inverseH);
             Real r = std::abs(std::min(p.normalImpulse / p.normalMass, gap));
             // Restitution raises the target after the sweeps; a bouncing point meets it instead.
             if (c.restitution > 0 && p.approachSpeed < -settings.restitutionThreshold)

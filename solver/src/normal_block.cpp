@@ -1,0 +1,103 @@
+#include "normal_block.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace tumble {
+namespace {
+
+// Regularisation of the diagonal relative to its largest entry: large enough to make the singular
+// 4x4 block of a rigid face factorisable, and to keep rounding out of the minimum-norm choice
+// (the null-space part of a right-hand side is amplified by 1 / eps), small enough not to move a
+// well-posed answer by more than eps relative: a resting box keeps ~1e-11 m/s.
+constexpr Real kRegularisation = 1e-10;
+// Equalities and inequalities are checked to this fraction of the largest |c| (m/s).
+constexpr Real kTolerance = 1e-7;
+constexpr Real kFloor = 1e-12;  // (m/s): when every |c| is zero
+
+// The active sets of four rows as bit masks, largest first, so the resting case (all four) and
+// then the three-point cases are found first.
+constexpr std::array<unsigned, 16> kSetsBySize = {0b1111, 0b0111, 0b1011, 0b1101, 0b1110, 0b0011,
+                                                  0b0101, 0b0110, 0b1001, 0b1010, 0b1100, 0b0001,
+                                                  0b0010, 0b0100, 0b1000, 0b0000};
+
+// Solves (K_SS + eps 1) x = -c_S for the rows in `set` by Cholesky; false if not positive.
+bool solveActive(const Mat4& k, unsigned set, const Vec4& c, Real eps, Vec4& x) {
+    std::array<int, 4> rows{};
+    int m = 0;
+    for (int i = 0; i < 4; ++i) {
+        if (set & (1u << i))
+            rows[m++] = i;
+    }
+    Real l[4][4] = {};
+    for (int i = 0; i < m; ++i) {
+        for (int j = 0; j <= i; ++j) {
+            Real sum = k(rows[i], rows[j]) + (i == j ? eps : 0);
+            for (int p = 0; p < j; ++p)
+                sum -= l[i][p] * l[j][p];
+            if (i == j) {
+                if (!(sum > 0))
+                    return false;
+                l[i][i] = std::sqrt(sum);
+            } else {
+                l[i][j] = sum / l[j][j];
+            }
+        }
+    }
+    // Forward and back substitution with L L' = K_SS + eps 1.
+    const auto substitute = [&](const Real* rhs, Real* out) {
+        Real y[4] = {};
+        for (int i = 0; i < m; ++i) {
+            Real sum = rhs[i];
+            for (int p = 0; p < i; ++p)
+                sum -= l[i][p] * y[p];
+            y[i] = sum / l[i][i];
+        }
+        for (int i = m - 1; i >= 0; --i) {
+            Real sum = y[i];
+            for (int p = i + 1; p < m; ++p)
+                sum -= l[p][i] * out[p];
+            out[i] = sum / l[i][i];
+        }
+    };
+    Real rhs[4] = {};
+    Real z[4] = {};
+    for (int i = 0; i < m; ++i)
+        rhs[i] = -c(rows[i]);
+    substitute(rhs, z);
+    x.setZero();
+    for (int i = 0; i < m; ++i)
+        x(rows[i]) = z[i];
+    return true;
+}
+
+}  // namespace
+
+bool solveNormalBlock(const Mat4& k, int n, const Vec4& c, Vec4& lambda) {
+    const unsigned all = (1u << n) - 1;
+    const Real eps = kRegularisation * k.diagonal().head(n).maxCoeff();
+    const Real tolerance = std::max(kTolerance * c.head(n).cwiseAbs().maxCoeff(), kFloor);
+    Vec4 x;
+    for (const unsigned set : kSetsBySize) {
+        if ((set & ~all) != 0)
+            continue;
+        if (set != 0 && !solveActive(k, set, c, eps, x))
+            continue;
+        if (set == 0)
+            x.setZero();
+        const Vec4 w = k * x + c;
+        bool ok = true;
+        for (int i = 0; i < n && ok; ++i) {
+            const bool active = (set & (1u << i)) != 0;
+            ok = active ? (x(i) >= 0 && std::abs(w(i)) <= tolerance) : w(i) >= -tolerance;
+        }
+        if (ok) {
+            lambda = x;
+            return true;
+        }
+    }
+    return false;
+}
+
+}  // namespace tumble
