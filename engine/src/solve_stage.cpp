@@ -12,6 +12,19 @@ Real mixRestitution(Real a, Real b) {
     return std::max(a, b);
 }
 
+namespace {
+
+// What this step's forces did to the velocity of a body point (m/s): the solver turns it into
+// the time and speed of an impact within the step.
+Vec3 velocityChangeAt(const BodyStore& bodies, std::uint32_t index, const Vec3& r) {
+    const BodyMotion& now = bodies.motion[index];
+    const BodyMotion& start = bodies.previousMotion[index];
+    return (now.linearVelocity - start.linearVelocity) +
+           (now.angularVelocity - start.angularVelocity).cross(r);
+}
+
+}  // namespace
+
 SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes,
                             std::span<Contact> contacts, const StepContext& context,
                             const SolverSettings& settings) {
@@ -50,6 +63,9 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes,
             p.rB = point.position - bodies.motion[c.bodyB].center;
             p.separation = point.separation;
             p.normalImpulse = contact.normalImpulse[i];
+            p.normalAcceleration = c.normal.dot(velocityChangeAt(bodies, c.bodyB, p.rB) -
+                                                velocityChangeAt(bodies, c.bodyA, p.rA)) *
+                                   context.inverseH;
         }
         constraints_.push_back(c);
         constraintContact_.push_back(k);

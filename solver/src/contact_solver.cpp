@@ -42,6 +42,42 @@ Real normalTarget(const ContactConstraintPoint& p, Real bias, Real slop, Real in
     return bias * inverseH * std::max<Real>(0, -p.separation - slop);
 }
 
+struct Impact {
+    Real time = 0;   // within the step (s)
+    Real speed = 0;  // normal velocity then (m/s), of the parabola below
+};
+
+// When and how fast a point at separation s hits, under a constant normal acceleration a, given
+// its normal velocity vEnd at the end of the step before contact (so vEnd - a h at its start).
+//
+// Semi-implicit Euler (v += a h, then x += h v) under constant a puts its positions exactly on a
+// parabola whose velocity runs half a step ahead: x_n = X(n h) for X(t) = x_0 + w t + a t^2 / 2
+// with w = v_0 + a h / 2. The impact is where that parabola meets the surface, and the bounce
+// restarts it there with -e times its speed (see reboundSpeed). So the discrete flight after a
+// bounce samples the continuous one and bounce heights are right to O(h^2). Taking vEnd as the
+// impact speed instead, as a plain Newton's law does, put +0.7 % into the first bounce's height at
+// h = 1/240, and the continuous speed at the impact -1.9 %.
+Impact impactWithinStep(Real s, Real vEnd, Real a, Real h) {
+    const Real w = vEnd - 0.5 * a * h;
+    if (s <= 0)
+        return {0, w < 0 ? w : vEnd};
+    // Roots of (a/2) t^2 + w t + s; the q form avoids cancellation.
+    const Real discriminant = w * w - 2 * a * s;
+    if (w < 0 && discriminant >= 0) {
+        const Real q = -0.5 * (w - std::sqrt(discriminant));  // > 0
+        Real t = s / q;
+        if (a != 0) {
+            const Real other = q / (0.5 * a);
+            if (other > 0 && other < t)
+                t = other;
+        }
+        if (t <= h)
+            return {t, w + a * t};
+    }
+    // Stopped although it would not have arrived (pushed by other contacts): the linear guess.
+    return {vEnd < 0 ? std::clamp(-s / vEnd, Real(0), h) : h, vEnd};
+}
+
 // The coupled friction update of one point, solved exactly: the impulse lambda in the disc
 // |lambda| <= r that minimises  1/2 (lambda - old)' K (lambda - old) + vt' (lambda - old),
 // i.e. the best friction this point alone can apply. At its solution the slip velocity after the
@@ -145,7 +181,7 @@ SolverStats ContactSolver::solve(std::span<SolverBody> bodies,
             pseudo[i].angular -= bodies[i].angularVelocity;
         }
     }
-    applyRestitution(bodies, constraints, settings, inverseH, split ? 0 : bias);
+    applyRestitution(bodies, constraints, settings, h, split ? 0 : bias);
     stats.maxResidual = residual(bodies, constraints, settings, inverseH, split ? 0 : bias);
     if (split)
         correctBounces(bodies, constraints, pseudo, inverseH, settings);
@@ -166,7 +202,7 @@ int ContactSolver::runSweeps(std::span<SolverBody> bodies, std::span<ContactCons
 }
 
 void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
-                            Real, const SolverSettings& settings) {
+                            Real h, const SolverSettings& settings) {
     for (ContactConstraint& c : constraints) {
         SolverBody& a = bodies[c.bodyA];
         SolverBody& b = bodies[c.bodyB];
@@ -188,6 +224,14 @@ void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
             p.tangentMass(0, 0) = 1 / kTangent(0, 0);
             p.tangentMass(1, 1) = 1 / kTangent(1, 1);
             p.approachSpeed = relativeVelocity(a, b, p).dot(c.normal);
+            const Impact impact =
+                impactWithinStep(p.separation, p.approachSpeed, p.normalAcceleration, h);
+            p.impactTime = impact.time;
+            p.impactSpeed = impact.speed;
+            // Newton's law at the impact, then the parabola for the rest of the step; the
+            // step's velocity runs half a step behind it (impactWithinStep).
+            p.reboundSpeed =
+                -c.restitution * impact.speed + p.normalAcceleration * (0.5 * h - impact.time);
             p.maxNormalImpulse = 0;
             p.pseudoImpulse = 0;
             p.bounceCorrection = 0;
@@ -292,8 +336,9 @@ void ContactSolver::solveNormals(SolverBody& a, SolverBody& b, ContactConstraint
 
 void ContactSolver::applyRestitution(std::span<SolverBody> bodies,
                                      std::span<ContactConstraint> constraints,
-                                     const SolverSettings& settings, Real inverseH,
+                                     const SolverSettings& settings, Real h,
                                      Real baumgarteBias) const {
+    const Real inverseH = 1 / h;
     // Sweeps like the velocity solve, because the points of one manifold share their bodies: a
     // single pass over four landing corners would tip the body, the first corners bouncing
     // before the last have been seen.
@@ -307,17 +352,23 @@ void ContactSolver::applyRestitution(std::span<SolverBody> bodies,
             for (int i = 0; i < c.pointCount; ++i) {
                 ContactConstraintPoint& p = c.points[i];
                 // Only points that were approaching fast and actually stopped something bounce.
-                if (p.approachSpeed > -settings.restitutionThreshold || p.maxNormalImpulse == 0)
+                if (p.impactSpeed > -settings.restitutionThreshold || p.maxNormalImpulse == 0)
                     continue;
                 const Real vn = relativeVelocity(a, b, p).dot(c.normal);
                 // Under Baumgarte the bias adds to the bounce, as in the study's Bullet: the
                 // energy gain at impacts it found.
                 const Real push =
                     p.separation < 0 ? normalTarget(p, baumgarteBias, settings.slop, inverseH) : 0;
-                const Real target = -c.restitution * p.approachSpeed + push;
+                const Real target = p.reboundSpeed + push;
                 const Real next = std::max<Real>(0, p.normalImpulse - p.normalMass * (vn - target));
                 applyPair(a, b, p, (next - p.normalImpulse) * c.normal);
-                p.bounceCorrection = p.separation > 0 ? (1 + c.restitution) * p.separation : 0;
+                // Integrated with the rebound speed from where it stands, the point would end
+                // s + h v+ above the surface; the bounce at the impact puts it at `rebound`.
+                const Real rest = h - p.impactTime;
+                const Real rebound = -c.restitution * p.impactSpeed * rest +
+                                     0.5 * p.normalAcceleration * rest * rest;
+                p.bounceCorrection =
+                    p.separation > 0 ? p.separation + h * p.reboundSpeed - rebound : 0;
                 if (p.normalMass > 0)
                     largestChange =
                         std::max(largestChange, std::abs(next - p.normalImpulse) / p.normalMass);
@@ -343,7 +394,7 @@ void ContactSolver::correctBounces(std::span<const SolverBody> bodies,
             PseudoVelocity& pb = pseudo[c.bodyB];
             for (int i = 0; i < c.pointCount; ++i) {
                 ContactConstraintPoint& p = c.points[i];
-                if (p.bounceCorrection <= 0)
+                if (p.bounceCorrection == 0)
                     continue;
                 const Vec3 v =
                     (pb.linear + pb.angular.cross(p.rB)) - (pa.linear + pa.angular.cross(p.rA));
@@ -377,8 +428,8 @@ Real ContactSolver::residual(std::span<const SolverBody> bodies,
             const Real gap = v.dot(c.normal) - normalTarget(p, bias, settings.slop, inverseH);
             Real r = std::abs(std::min(p.normalImpulse / p.normalMass, gap));
             // Restitution raises the target after the sweeps; a bouncing point meets it instead.
-            if (c.restitution > 0 && p.approachSpeed < -settings.restitutionThreshold)
-                r = std::min(r, std::abs(gap + c.restitution * p.approachSpeed));
+            if (c.restitution > 0 && p.impactSpeed < -settings.restitutionThreshold)
+                r = std::min(r, std::abs(v.dot(c.normal) - p.reboundSpeed));
             worst = std::max(worst, r);
         }
     }

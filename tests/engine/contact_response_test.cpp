@@ -35,8 +35,12 @@ TEST(ContactResponse, DroppedBoxComesToRestOnTheGround) {
     EXPECT_LE(world.solverStats().deepestPenetration, slop + 1e-3);
 }
 
-TEST(ContactResponse, SphereBouncesWithNewtonsRestitution) {
-    World world(WorldDef{.timeStep = 1.0 / 1000});
+// The first apex, r + (H - r) e^2, at a coarse step: the bounce is placed at the time of impact
+// within the step, on the parabola the integrator's positions follow, so the apex is right to
+// O(h^2) (measured -0.27 % at h = 1/60, -0.02 % at 1/240). Taking the end-of-step speed as the
+// impact speed gave +4.4 % at 1/60.
+Real firstApex(Real h) {
+    World world(WorldDef{.timeStep = h});
     addGround(world);
     BodyDef def;
     def.position = Vec3(0, 0, 1);
@@ -44,22 +48,25 @@ TEST(ContactResponse, SphereBouncesWithNewtonsRestitution) {
     ShapeDef shape{.geometry = Sphere{0.1}};
     shape.material.restitution = 0.8;
     world.createShape(ball, shape);
-    // First apex: r + (H - r) e^2.
-    Real apex = 0;
     bool bounced = false;
-    for (int i = 0; i < 3000; ++i) {
+    for (int i = 0; i < static_cast<int>(3 / h); ++i) {
         world.step();
         const Real vz = world.linearVelocity(ball).z();
         if (vz > 0)
             bounced = true;
-        if (bounced && vz <= 0) {
-            apex = world.position(ball).z();
-            break;
-        }
+        if (bounced && vz <= 0)
+            return world.position(ball).z();
     }
+    return 0;
+}
+
+TEST(ContactResponse, SphereBouncesWithNewtonsRestitution) {
     const Real expected = 0.1 + 0.9 * 0.64;
-    EXPECT_NEAR(apex, expected, 0.02 * expected);
-    EXPECT_LE(apex, expected * 1.005) << "no energy created at the impact";
+    for (const Real h : {1.0 / 60, 1.0 / 240, 1.0 / 1000}) {
+        const Real apex = firstApex(h);
+        EXPECT_NEAR(apex, expected, 0.005 * expected) << "h = " << h;
+        EXPECT_LE(apex, expected * 1.001) << "no energy created at the impact, h = " << h;
+    }
 }
 
 }  // namespace

@@ -93,7 +93,14 @@ struct ContactConstraintPoint {
     Mat3 tangentMass = Mat3::Zero();  ///< diagonal: 1 / K_tt of each tangent row (kg), box model
     Vec3 angularA = Vec3::Zero();     ///< rA x n: A's angular normal Jacobian (m)
     Vec3 angularB = Vec3::Zero();     ///< rB x n (m)
-    Real approachSpeed = 0;           ///< v_n before the solve (m/s), negative when approaching
+    /// Normal relative acceleration from the forces of this step (gravity...), (m/s^2); with it
+    /// the solver finds when within the step, and how fast, a speculative point hits (see
+    /// applyRestitution). Zero when the caller does not know it.
+    Real normalAcceleration = 0;
+    Real approachSpeed = 0;     ///< v_n before the solve (m/s), negative when approaching
+    Real impactTime = 0;        ///< of the impact within the step (s), 0 when already touching
+    Real impactSpeed = 0;       ///< v_n at that time (m/s), negative when approaching
+    Real reboundSpeed = 0;      ///< v_n at the end of the step after a bounce (m/s)
     Real maxNormalImpulse = 0;  ///< largest lambda_n during the solve: did the point carry load?
     Real pseudoImpulse = 0;     ///< bounce position correction accumulated this step (N s)
     Real bounceCorrection = 0;  ///< (m): a speculative point that bounced at separation s > 0
