@@ -18,6 +18,22 @@ Vec3 relativeVelocity(const SolverBody& a, const SolverBody& b, const ContactCon
     return b.velocityAt(p.rB) - a.velocityAt(p.rA);
 }
 
+// v_n = n . (vB + wB x rB - vA - wA x rA), with the angular parts precomputed by prepare().
+Real normalSpeed(const SolverBody& a, const SolverBody& b, const Vec3& n,
+                 const ContactConstraintPoint& p) {
+    return n.dot(b.linearVelocity - a.linearVelocity) + p.angularB.dot(b.angularVelocity) -
+           p.angularA.dot(a.angularVelocity);
+}
+
+// A normal impulse lambda n on B at the point, -lambda n on A.
+void applyNormal(SolverBody& a, SolverBody& b, const Vec3& n, const ContactConstraintPoint& p,
+                 Real lambda) {
+    a.linearVelocity -= (a.inverseMass * lambda) * n;
+    a.angularVelocity -= lambda * p.angularImpulseA;
+    b.linearVelocity += (b.inverseMass * lambda) * n;
+    b.angularVelocity += lambda * p.angularImpulseB;
+}
+
 // The impulse P acts on B at rB and -P on A at rA.
 void applyPair(SolverBody& a, SolverBody& b, const ContactConstraintPoint& p, const Vec3& impulse) {
     applyImpulse(a, -impulse, p.rA);
@@ -220,6 +236,8 @@ void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
             p.tangentBlock = kTangent;
             p.angularA = p.rA.cross(c.normal);
             p.angularB = p.rB.cross(c.normal);
+            p.angularImpulseA = a.inverseInertia * p.angularA;
+            p.angularImpulseB = b.inverseInertia * p.angularB;
             p.tangentMass.setZero();
             p.tangentMass(0, 0) = 1 / kTangent(0, 0);
             p.tangentMass(1, 1) = 1 / kTangent(1, 1);
@@ -249,8 +267,8 @@ void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
             for (int j = 0; j < c.pointCount; ++j) {
                 const ContactConstraintPoint& q = c.points[j];
                 c.normalBlock(i, j) = a.inverseMass + b.inverseMass +
-                                      p.angularA.dot(a.inverseInertia * q.angularA) +
-                                      p.angularB.dot(b.inverseInertia * q.angularB);
+                                      p.angularA.dot(q.angularImpulseA) +
+                                      p.angularB.dot(q.angularImpulseB);
             }
         }
     }
@@ -304,22 +322,21 @@ void ContactSolver::solveNormals(SolverBody& a, SolverBody& b, ContactConstraint
     for (int i = 0; i < n; ++i) {
         const ContactConstraintPoint& p = c.points[i];
         old(i) = p.normalImpulse;
-        gap(i) = relativeVelocity(a, b, p).dot(c.normal) -
-                 normalTarget(p, bias, settings.slop, inverseH);
+        gap(i) = normalSpeed(a, b, c.normal, p) - normalTarget(p, bias, settings.slop, inverseH);
     }
-    Vec4 exact;
+    Vec4 exact = old;
     if (n > 1 && solveNormalBlock(c.normalBlock, n, gap - c.normalBlock * old, exact)) {
         next = (old + omega * (exact - old)).cwiseMax(0);
         for (int i = 0; i < n; ++i)
-            applyPair(a, b, c.points[i], (next(i) - old(i)) * c.normal);
+            applyNormal(a, b, c.normal, c.points[i], next(i) - old(i));
     } else {
         // One point, or a degenerate block: the points one by one.
         for (int i = 0; i < n; ++i) {
             ContactConstraintPoint& p = c.points[i];
-            const Real vn = relativeVelocity(a, b, p).dot(c.normal) -
-                            normalTarget(p, bias, settings.slop, inverseH);
+            const Real vn =
+                normalSpeed(a, b, c.normal, p) - normalTarget(p, bias, settings.slop, inverseH);
             next(i) = std::max<Real>(0, old(i) - omega * p.normalMass * vn);
-            applyPair(a, b, p, (next(i) - old(i)) * c.normal);
+            applyNormal(a, b, c.normal, p, next(i) - old(i));
         }
     }
     for (int i = 0; i < n; ++i) {
@@ -354,14 +371,14 @@ void ContactSolver::applyRestitution(std::span<SolverBody> bodies,
                 // Only points that were approaching fast and actually stopped something bounce.
                 if (p.impactSpeed > -settings.restitutionThreshold || p.maxNormalImpulse == 0)
                     continue;
-                const Real vn = relativeVelocity(a, b, p).dot(c.normal);
+                const Real vn = normalSpeed(a, b, c.normal, p);
                 // Under Baumgarte the bias adds to the bounce, as in the study's Bullet: the
                 // energy gain at impacts it found.
                 const Real push =
                     p.separation < 0 ? normalTarget(p, baumgarteBias, settings.slop, inverseH) : 0;
                 const Real target = p.reboundSpeed + push;
                 const Real next = std::max<Real>(0, p.normalImpulse - p.normalMass * (vn - target));
-                applyPair(a, b, p, (next - p.normalImpulse) * c.normal);
+                applyNormal(a, b, c.normal, p, next - p.normalImpulse);
                 // Integrated with the rebound speed from where it stands, the point would end
                 // s + h v+ above the surface; the bounce at the impact puts it at `rebound`.
                 const Real rest = h - p.impactTime;

@@ -78,9 +78,17 @@ bool solveNormalBlock(const Mat4& k, int n, const Vec4& c, Vec4& lambda) {
     const unsigned all = (1u << n) - 1;
     const Real eps = kRegularisation * k.diagonal().head(n).maxCoeff();
     const Real tolerance = std::max(kTolerance * c.head(n).cwiseAbs().maxCoeff(), kFloor);
+    // The set that carried load last time is usually the answer (a resting face: all of it; a
+    // face merely touching: none of it), so it is tried first.
+    unsigned guess = 0;
+    for (int i = 0; i < n; ++i) {
+        if (lambda(i) > 0)
+            guess |= 1u << i;
+    }
     Vec4 x;
-    for (const unsigned set : kSetsBySize) {
-        if ((set & ~all) != 0)
+    for (int attempt = -1; attempt < static_cast<int>(kSetsBySize.size()); ++attempt) {
+        const unsigned set = attempt < 0 ? guess : kSetsBySize[attempt];
+        if ((set & ~all) != 0 || (attempt >= 0 && set == guess))
             continue;
         if (set != 0 && !solveActive(k, set, c, eps, x))
             continue;

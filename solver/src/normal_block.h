@@ -28,9 +28,10 @@ namespace tumble {
 using Mat4 = Eigen::Matrix<Real, 4, 4>;
 using Vec4 = Eigen::Matrix<Real, 4, 1>;
 
-/// Solves the LCP above for the first n (1..4) rows of k and c. On success writes lambda
-/// (entries past n are zero) and returns true; returns false when no active set checks out to
-/// rounding (a degenerate block), leaving lambda unchanged.
+/// Solves the LCP above for the first n (1..4) rows of k and c. `lambda` comes in as the last
+/// answer (its positive entries are the first active set tried) and on success goes out as the
+/// new one (entries past n zero); returns false when no active set checks out to rounding (a
+/// degenerate block), leaving lambda unchanged.
 bool solveNormalBlock(const Mat4& k, int n, const Vec4& c, Vec4& lambda);
 
 }  // namespace tumble

@@ -2,11 +2,6 @@
 
 namespace tumble {
 
-void applyImpulse(SolverBody& body, const Vec3& impulse, const Vec3& r) {
-    body.linearVelocity += body.inverseMass * impulse;
-    body.angularVelocity += body.inverseInertia * r.cross(impulse);
-}
-
 Real effectiveMass(const SolverBody& a, const Vec3& rA, const SolverBody& b, const Vec3& rB,
                    const Vec3& n) {
     const Vec3 rnA = rA.cross(n);

@@ -17,8 +17,11 @@ struct SolverBody {
 };
 
 /// Applies an impulse p (N s) at offset r (m) from the centre of mass:
-/// v += p / m,  w += I^-1 (r x p).
-void applyImpulse(SolverBody& body, const Vec3& impulse, const Vec3& r);
+/// v += p / m,  w += I^-1 (r x p). Inline: the solver's innermost loop calls it.
+inline void applyImpulse(SolverBody& body, const Vec3& impulse, const Vec3& r) {
+    body.linearVelocity += body.inverseMass * impulse;
+    body.angularVelocity += body.inverseInertia * r.cross(impulse);
+}
 
 /// The effective mass along unit direction n of the pair (A, B) at offsets rA, rB (kg): the
 /// inverse of  1/mA + 1/mB + (rA x n)' IA^-1 (rA x n) + (rB x n)' IB^-1 (rB x n).
