@@ -46,10 +46,20 @@ struct ValidationCase {
 ValidationCase freeFallCase();
 ValidationCase oscillatorCase();
 ValidationCase torqueFreeCase();
+ValidationCase bounceCase();
+ValidationCase inclineCase();
+ValidationCase slideCase();
+ValidationCase stackCase();
+ValidationCase pyramidCase();
+ValidationCase massRatioCase();
+ValidationCase tableCase();
+ValidationCase tunnelCase();
 
 /// Every case, in the order the runner lists them.
 inline std::vector<ValidationCase> allCases() {
-    return {freeFallCase(), oscillatorCase(), torqueFreeCase()};
+    return {freeFallCase(),  oscillatorCase(), torqueFreeCase(), bounceCase(),
+            inclineCase(),   slideCase(),      stackCase(),      pyramidCase(),
+            massRatioCase(), tableCase(),      tunnelCase()};
 }
 
 /// Least-squares slope of log(y) against log(x): the order of convergence.
