@@ -52,12 +52,14 @@ enum class Stabilisation : std::uint8_t {
 };
 
 struct SolverSettings {
-    int iterations = 10;      ///< PGS sweeps over the velocity rows, >= 1
-    int relaxIterations = 4;  ///< split impulse: sweeps without the bias after the biased
-                              ///< ones, removing the push-out velocity, >= 0
-    Real tolerance = 0;       ///< (m/s), >= 0: stop early when no impulse changes a velocity
-                              ///< by more than this in a sweep; 0 runs the full budget
-    Real relaxation = 1;      ///< successive over-relaxation factor, in (0, 2)
+    int iterations = 10;  ///< PGS sweeps over the velocity rows, >= 1
+    /// Split impulse: sweeps without the bias after the biased ones, removing the push-out
+    /// velocity, >= 0. Too few leave some of it in the real velocity: a 100 kg box on a 1 kg box
+    /// bounced on the ground with 4 or 6 and came to rest with 8 or more.
+    int relaxIterations = 10;
+    Real tolerance = 0;   ///< (m/s), >= 0: stop early when no impulse changes a velocity
+                          ///< by more than this in a sweep; 0 runs the full budget
+    Real relaxation = 1;  ///< successive over-relaxation factor, in (0, 2)
     FrictionModel friction = FrictionModel::Coupled;
     Stabilisation stabilisation = Stabilisation::SplitImpulse;
     Real baumgarte = 0.2;  ///< k_erp, dimensionless, in [0, 1]
