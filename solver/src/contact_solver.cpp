@@ -107,11 +107,12 @@ Impact impactWithinStep(Real s, Real vEnd, Real a, Real h) {
 // Sliding case: a trust-region problem; lambda(nu) = (K + nu 1)^-1 b with b = K old - vt, and the
 // multiplier nu >= 0 solves |lambda(nu)| = r. Newton on 1/|lambda(nu)| - 1/r, which is concave
 // and increasing in nu, converges monotonically from nu = 0 (More & Sorensen).
-Vec2 solveFrictionDisc(const Mat2& k, const Vec2& old, const Vec2& vt, Real radius) {
+Vec2 solveFrictionDisc(const Mat2& k, const Mat2& kInverse, const Vec2& old, const Vec2& vt,
+                       Real radius) {
     if (radius <= 0)
         return Vec2::Zero();
     const Vec2 b = k * old - vt;
-    const Vec2 free = k.inverse() * b;
+    const Vec2 free = kInverse * b;
     if (free.squaredNorm() <= radius * radius)
         return free;
     const Eigen::SelfAdjointEigenSolver<Mat2> eigen(k);
@@ -238,6 +239,13 @@ void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
             p.angularB = p.rB.cross(c.normal);
             p.angularImpulseA = a.inverseInertia * p.angularA;
             p.angularImpulseB = b.inverseInertia * p.angularB;
+            p.tangentInverse = kTangent.inverse();
+            for (int r = 0; r < 2; ++r) {
+                p.tangentAngularA[r] = p.rA.cross(c.tangents[r]);
+                p.tangentAngularB[r] = p.rB.cross(c.tangents[r]);
+                p.tangentImpulseA[r] = a.inverseInertia * p.tangentAngularA[r];
+                p.tangentImpulseB[r] = b.inverseInertia * p.tangentAngularB[r];
+            }
             p.tangentMass.setZero();
             p.tangentMass(0, 0) = 1 / kTangent(0, 0);
             p.tangentMass(1, 1) = 1 / kTangent(1, 1);
@@ -288,20 +296,32 @@ Real ContactSolver::solveVelocitySweep(std::span<SolverBody> bodies,
         if (c.friction > 0) {
             for (int i = 0; i < c.pointCount; ++i) {
                 ContactConstraintPoint& p = c.points[i];
-                const Vec3 v = relativeVelocity(a, b, p);
-                const Vec2 vt(v.dot(c.tangents[0]), v.dot(c.tangents[1]));
+                const Vec3 dv = b.linearVelocity - a.linearVelocity;
+                Vec2 vt;
+                for (int r = 0; r < 2; ++r) {
+                    vt(r) = c.tangents[r].dot(dv) + p.tangentAngularB[r].dot(b.angularVelocity) -
+                            p.tangentAngularA[r].dot(a.angularVelocity);
+                }
                 const Vec2 old(p.tangentImpulse[0], p.tangentImpulse[1]);
                 const Real limit = c.friction * p.normalImpulse;
                 Vec2 next;
                 if (settings.friction == FrictionModel::Coupled) {
-                    next = old + omega * (solveFrictionDisc(p.tangentBlock, old, vt, limit) - old);
+                    next = old + omega * (solveFrictionDisc(p.tangentBlock, p.tangentInverse, old,
+                                                            vt, limit) -
+                                          old);
                 } else {
                     next = (old - omega * (p.tangentMass.topLeftCorner<2, 2>() * vt))
                                .cwiseMax(-limit)
                                .cwiseMin(limit);
                 }
                 const Vec2 delta = next - old;
-                applyPair(a, b, p, delta.x() * c.tangents[0] + delta.y() * c.tangents[1]);
+                const Vec3 linear = delta.x() * c.tangents[0] + delta.y() * c.tangents[1];
+                a.linearVelocity -= a.inverseMass * linear;
+                a.angularVelocity -=
+                    delta.x() * p.tangentImpulseA[0] + delta.y() * p.tangentImpulseA[1];
+                b.linearVelocity += b.inverseMass * linear;
+                b.angularVelocity +=
+                    delta.x() * p.tangentImpulseB[0] + delta.y() * p.tangentImpulseB[1];
                 p.tangentImpulse = {next.x(), next.y()};
                 largestChange = std::max(largestChange, (p.tangentBlock * delta).norm());
             }

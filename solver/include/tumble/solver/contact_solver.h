@@ -95,8 +95,14 @@ struct ContactConstraintPoint {
     Mat3 tangentMass = Mat3::Zero();  ///< diagonal: 1 / K_tt of each tangent row (kg), box model
     Vec3 angularA = Vec3::Zero();     ///< rA x n: A's angular normal Jacobian (m)
     Vec3 angularB = Vec3::Zero();     ///< rB x n (m)
-    Vec3 angularImpulseA = Vec3::Zero();  ///< IA^-1 (rA x n): A's spin per unit normal impulse
-    Vec3 angularImpulseB = Vec3::Zero();  ///< IB^-1 (rB x n)
+    Vec3 angularImpulseA = Vec3::Zero();    ///< IA^-1 (rA x n): A's spin per unit normal impulse
+    Vec3 angularImpulseB = Vec3::Zero();    ///< IB^-1 (rB x n)
+    std::array<Vec3, 2> tangentAngularA{};  ///< rA x t_k for the two tangents (m)
+    std::array<Vec3, 2> tangentAngularB{};  ///< rB x t_k (m)
+    std::array<Vec3, 2> tangentImpulseA{};  ///< IA^-1 (rA x t_k)
+    std::array<Vec3, 2> tangentImpulseB{};  ///< IB^-1 (rB x t_k)
+    Eigen::Matrix<Real, 2, 2> tangentInverse =
+        Eigen::Matrix<Real, 2, 2>::Zero();  ///< tangentBlock^-1 (kg)
     /// Normal relative acceleration from the forces of this step (gravity...), (m/s^2); with it
     /// the solver finds when within the step, and how fast, a speculative point hits (see
     /// applyRestitution). Zero when the caller does not know it.

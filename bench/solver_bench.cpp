@@ -1,0 +1,101 @@
+// The contact solver: whole steps of the stack and pyramid scenes the validation cases check
+// (same builders, validation/cases/scenes.h), and the PGS sweep alone, per row and iteration.
+
+#include <benchmark/benchmark.h>
+
+#include <vector>
+
+#include "scenes.h"
+#include "tumble/solver/contact_solver.h"
+#include "tumble/tumble.h"
+
+namespace {
+
+using namespace tumble;
+namespace scenes = tumble::validation::scenes;
+
+constexpr Real kFriction = 0.5;
+constexpr int kSettleSteps =
+    120;  // past the first contacts, so warm starting is in its steady state
+
+void stepScene(benchmark::State& state, World& world, int bodies) {
+    for (int i = 0; i < kSettleSteps; ++i)
+        world.step();
+    for (auto _ : state)
+        benchmark::DoNotOptimize(world.step());
+    state.counters["bodies"] = bodies;
+    state.counters["contacts"] = static_cast<double>(world.contacts().size());
+    // Simulated seconds per wall second at h = 1/60: above 1 is faster than real time.
+    state.counters["realtime_factor"] =
+        benchmark::Counter(static_cast<double>(state.iterations()) * world.settings().timeStep,
+                           benchmark::Counter::kIsRate);
+}
+
+// A column of N unit cubes at h = 1/60, 10 iterations (the `stack` case).
+void BM_StackStep(benchmark::State& state) {
+    World world(scenes::stackWorld());
+    scenes::addGround(world, scenes::material(kFriction));
+    const int count = static_cast<int>(state.range(0));
+    scenes::buildStack(world, count, scenes::material(kFriction));
+    stepScene(state, world, count);
+}
+BENCHMARK(BM_StackStep)->Arg(5)->Arg(10)->Arg(20)->Arg(40)->Unit(benchmark::kMicrosecond);
+
+// A planar pyramid of unit cubes with the given base (the `pyramid` case: 210 cubes for 20).
+void BM_PyramidStep(benchmark::State& state) {
+    World world(scenes::stackWorld());
+    scenes::addGround(world, scenes::material(kFriction));
+    std::vector<int> levels;
+    const std::vector<BodyId> cubes = scenes::buildPyramid(
+        world, static_cast<int>(state.range(0)), 0.05, scenes::material(kFriction), levels);
+    stepScene(state, world, static_cast<int>(cubes.size()));
+}
+BENCHMARK(BM_PyramidStep)->Arg(20)->Arg(40)->Unit(benchmark::kMillisecond);
+
+// The PGS sweep alone: N unit boxes (2 kg) each resting on four corners on a static ground,
+// coupled friction, split impulse off the table (Baumgarte, no relax sweeps), so the time is
+// `iterations` sweeps over 3 rows per point (normal, two friction) plus one preparation.
+void BM_PgsRowIteration(benchmark::State& state) {
+    const int boxes = static_cast<int>(state.range(0));
+    const int iterations = static_cast<int>(state.range(1));
+    constexpr Real kH = 1.0 / 60;
+    std::vector<SolverBody> bodies(boxes + 1);
+    std::vector<ContactConstraint> constraints(boxes);
+    for (int k = 0; k < boxes; ++k) {
+        bodies[k + 1].inverseMass = 0.5;
+        bodies[k + 1].inverseInertia = Mat3::Identity() * 3;
+        ContactConstraint& c = constraints[k];
+        c.bodyA = 0;
+        c.bodyB = static_cast<std::uint32_t>(k + 1);
+        c.friction = kFriction;
+        c.pointCount = 4;
+        int i = 0;
+        for (Real x : {-0.5, 0.5}) {
+            for (Real y : {-0.5, 0.5}) {
+                c.points[i].rA = Vec3(x, y, 0);
+                c.points[i].rB = Vec3(x, y, -0.5);
+                ++i;
+            }
+        }
+    }
+    SolverSettings settings;
+    settings.iterations = iterations;
+    settings.stabilisation = Stabilisation::Baumgarte;
+    ContactSolver solver;
+    std::vector<PseudoVelocity> pseudo;
+    for (auto _ : state) {
+        // Each box sliding a little and falling, so every row has work to do.
+        for (int k = 0; k < boxes; ++k) {
+            bodies[k + 1].linearVelocity = Vec3(0.1, 0.05 * (k % 3), -9.81 * kH);
+            bodies[k + 1].angularVelocity = Vec3::Zero();
+        }
+        benchmark::DoNotOptimize(solver.solve(bodies, constraints, pseudo, kH, settings));
+    }
+    const double rows = 3.0 * 4 * boxes;
+    state.counters["ns_per_row_iteration"] =
+        benchmark::Counter(static_cast<double>(state.iterations()) * rows * iterations * 1e-9,
+                           benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_PgsRowIteration)->Args({1000, 10})->Args({1000, 40})->Unit(benchmark::kMicrosecond);
+
+}  // namespace
