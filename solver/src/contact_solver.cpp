@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include <Eigen/Eigenvalues>
-
 #include "normal_block.h"
 #include "tumble/core/error.h"
 
@@ -107,17 +105,16 @@ Impact impactWithinStep(Real s, Real vEnd, Real a, Real h) {
 // Sliding case: a trust-region problem; lambda(nu) = (K + nu 1)^-1 b with b = K old - vt, and the
 // multiplier nu >= 0 solves |lambda(nu)| = r. Newton on 1/|lambda(nu)| - 1/r, which is concave
 // and increasing in nu, converges monotonically from nu = 0 (More & Sorensen).
-Vec2 solveFrictionDisc(const Mat2& k, const Mat2& kInverse, const Vec2& old, const Vec2& vt,
+Vec2 solveFrictionDisc(const ContactConstraintPoint& p, const Vec2& old, const Vec2& vt,
                        Real radius) {
     if (radius <= 0)
         return Vec2::Zero();
-    const Vec2 b = k * old - vt;
-    const Vec2 free = kInverse * b;
+    const Vec2 b = p.tangentBlock * old - vt;
+    const Vec2 free = p.tangentInverse * b;
     if (free.squaredNorm() <= radius * radius)
         return free;
-    const Eigen::SelfAdjointEigenSolver<Mat2> eigen(k);
-    const Vec2 moments = eigen.eigenvalues();
-    const Vec2 c = eigen.eigenvectors().transpose() * b;
+    const Vec2& moments = p.tangentMoments;
+    const Vec2 c = p.tangentAxes.transpose() * b;
     Real nu = 0;
     for (int iteration = 0; iteration < 20; ++iteration) {
         const Vec2 q = c.cwiseQuotient(moments + Vec2::Constant(nu));  // lambda in the eigenbasis
@@ -130,8 +127,20 @@ Vec2 solveFrictionDisc(const Mat2& k, const Mat2& kInverse, const Vec2& old, con
         if (std::abs(step) <= 1e-12 * (nu + moments.maxCoeff()))
             break;
     }
-    const Vec2 lambda = eigen.eigenvectors() * c.cwiseQuotient(moments + Vec2::Constant(nu));
+    const Vec2 lambda = p.tangentAxes * c.cwiseQuotient(moments + Vec2::Constant(nu));
     return lambda * (radius / lambda.norm());  // on the rim to rounding
+}
+
+// Eigen-decomposition of a symmetric 2x2 matrix in closed form: k = axes diag(moments) axes'.
+void decompose(const Mat2& k, Vec2& moments, Mat2& axes) {
+    const Real mean = 0.5 * (k(0, 0) + k(1, 1));
+    const Real half = 0.5 * (k(0, 0) - k(1, 1));
+    const Real radius = std::hypot(half, k(0, 1));
+    const Real angle = 0.5 * std::atan2(k(0, 1), half);  // of the larger moment's axis
+    const Real cs = std::cos(angle);
+    const Real sn = std::sin(angle);
+    moments = Vec2(mean - radius, mean + radius);
+    axes << -sn, cs, cs, sn;
 }
 
 }  // namespace
@@ -240,6 +249,7 @@ void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
             p.angularImpulseA = a.inverseInertia * p.angularA;
             p.angularImpulseB = b.inverseInertia * p.angularB;
             p.tangentInverse = kTangent.inverse();
+            decompose(kTangent, p.tangentMoments, p.tangentAxes);
             for (int r = 0; r < 2; ++r) {
                 p.tangentAngularA[r] = p.rA.cross(c.tangents[r]);
                 p.tangentAngularB[r] = p.rB.cross(c.tangents[r]);
@@ -306,9 +316,7 @@ Real ContactSolver::solveVelocitySweep(std::span<SolverBody> bodies,
                 const Real limit = c.friction * p.normalImpulse;
                 Vec2 next;
                 if (settings.friction == FrictionModel::Coupled) {
-                    next = old + omega * (solveFrictionDisc(p.tangentBlock, p.tangentInverse, old,
-                                                            vt, limit) -
-                                          old);
+                    next = old + omega * (solveFrictionDisc(p, old, vt, limit) - old);
                 } else {
                     next = (old - omega * (p.tangentMass.topLeftCorner<2, 2>() * vt))
                                .cwiseMax(-limit)

@@ -93,8 +93,11 @@ Real speedLostInOneStep(FrictionModel model, Real theta) {
     scene.box().linearVelocity = v0;
     scene.step();
     const Vec3 v = scene.box().linearVelocity;
+    // 1e-8 rad: the four legs' load split carries rounding amplified by the normal block's
+    // regularisation (~1e-6 relative, normal_block.h), so the legs' friction discs differ by as
+    // much and turn the result by ~1e-9 rad. The box model is off by ~0.1 rad here.
     EXPECT_NEAR(v.cross(v0).norm() / (v.norm() * v0.norm()), 0,
-                theta == 0 || model == FrictionModel::Coupled ? 1e-9 : 1)
+                theta == 0 || model == FrictionModel::Coupled ? 1e-8 : 1)
         << "coupled friction acts against the sliding direction";
     return v0.norm() - v.head<2>().norm();
 }

@@ -103,6 +103,9 @@ struct ContactConstraintPoint {
     std::array<Vec3, 2> tangentImpulseB{};  ///< IB^-1 (rB x t_k)
     Eigen::Matrix<Real, 2, 2> tangentInverse =
         Eigen::Matrix<Real, 2, 2>::Zero();  ///< tangentBlock^-1 (kg)
+    /// tangentBlock = axes diag(moments) axes': its eigen-decomposition, for the sliding case
+    Eigen::Matrix<Real, 2, 1> tangentMoments = Eigen::Matrix<Real, 2, 1>::Zero();
+    Eigen::Matrix<Real, 2, 2> tangentAxes = Eigen::Matrix<Real, 2, 2>::Identity();
     /// Normal relative acceleration from the forces of this step (gravity...), (m/s^2); with it
     /// the solver finds when within the step, and how fast, a speculative point hits (see
     /// applyRestitution). Zero when the caller does not know it.
