@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "refusal.h"
 #include "tumble/world.h"
 
 namespace tumble {
@@ -67,6 +68,30 @@ TEST(ContactResponse, SphereBouncesWithNewtonsRestitution) {
         EXPECT_NEAR(apex, expected, 0.005 * expected) << "h = " << h;
         EXPECT_LE(apex, expected * 1.001) << "no energy created at the impact, h = " << h;
     }
+}
+
+// Bad solver settings are refused where the world takes them, naming the field, and leave the
+// world's settings as they were.
+TEST(ContactResponse, BadSolverSettingsAreRefusedByTheWorld) {
+    WorldDef def;
+    def.solver.iterations = -1;
+    EXPECT_TRUE(test::contains(test::refusal([&] { World{def}; }), "iterations"));
+
+    World world;
+    const SolverSettings before = world.settings().solver;
+    SolverSettings bad = before;
+    bad.relaxation = 2.5;
+    EXPECT_TRUE(test::contains(test::refusal([&] { world.setSolverSettings(bad); }), "relaxation"));
+    bad = before;
+    bad.slop = -0.001;
+    EXPECT_TRUE(test::contains(test::refusal([&] { world.setSolverSettings(bad); }), "slop"));
+    bad = before;
+    bad.relaxIterations = -2;
+    EXPECT_TRUE(
+        test::contains(test::refusal([&] { world.setSolverSettings(bad); }), "relaxIterations"));
+    EXPECT_EQ(world.settings().solver.iterations, before.iterations);
+    EXPECT_EQ(world.settings().solver.slop, before.slop);
+    EXPECT_EQ(world.settings().solver.relaxIterations, before.relaxIterations);
 }
 
 }  // namespace
