@@ -159,10 +159,10 @@ void ContactManager::create(const ProxyPair& pair, const ShapeStore& shapes, Bod
     link(slot, 1, bodies.info[indexB]);
     if (bodies.isAwake(indexA) || bodies.isAwake(indexB))
         activate(slot);
-    // A static or kinematic shape placed next to sleeping bodies through the API wakes them:
-    // it may overlap them already, and a static one would otherwise never be collided with
-    // them. Other new pairs wake nothing (a body created asleep stays asleep on the ground; an
-    // awake dynamic body wakes a sleeper only once it touches it, in collideActive).
+    // A static or kinematic shape teleported next to sleeping bodies wakes them: it may overlap
+    // them, and a static one would otherwise never be collided with them. Other new pairs wake
+    // nothing (a body created asleep stays asleep on the ground; an awake dynamic body wakes a
+    // sleeper once it touches it, in collideActive).
     if (std::binary_search(placedProxies_.begin(), placedProxies_.end(), pair.first) ||
         std::binary_search(placedProxies_.begin(), placedProxies_.end(), pair.second)) {
         for (const std::uint32_t index : {indexA, indexB}) {

@@ -68,8 +68,8 @@ public:
     template <typename Visit>
     void forEachContact(const BodyStore& bodies, std::uint32_t index, Visit&& visit) const;
 
-    /// A static or kinematic body's shape was created or teleported: the sleeping bodies it
-    /// pairs with at the next broadphase update are woken (see wakeRequests()).
+    /// A static or kinematic body's shape was teleported: the sleeping bodies it pairs with at
+    /// the next broadphase update are woken (see wakeRequests()).
     void markPlaced(std::uint32_t proxy);
     /// Dense indices of sleeping bodies the last narrowphase found touched (or that a placed
     /// shape reached); valid until the bodies change.

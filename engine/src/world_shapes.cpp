@@ -50,13 +50,9 @@ ShapeId World::createShape(BodyId body, const ShapeDef& def) {
         info.massFromShapes = true;
     }
     // A body built asleep stays asleep as its shapes are added; any other one wakes. A new
-    // static or kinematic shape wakes the sleepers it reaches (at the next broadphase update).
-    if (info.type == BodyType::Dynamic) {
-        if (!info.builtAsleep)
-            w.islands.push(w.bodies, w.contacts, bodyIndex);
-    } else {
-        w.contacts.markPlaced(record.proxy);
-    }
+    // static shape wakes nothing: a scene is built ground first, then a pile created asleep.
+    if (info.type == BodyType::Dynamic && !info.builtAsleep)
+        w.islands.push(w.bodies, w.contacts, bodyIndex);
     return id;
 }
 

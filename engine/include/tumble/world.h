@@ -8,8 +8,8 @@
 /// - The manifold normal (collision) points from body A to body B.
 /// - Forces and torques applied between steps act during the next step and are then cleared.
 /// - Changing a body through the API (pose, velocity, mass, a force, torque or impulse, adding or
-///   removing a shape) wakes its island; moving, destroying or reshaping a static or kinematic
-///   body wakes the islands it touches.
+///   removing a shape) wakes its island; moving or destroying a static or kinematic body, or
+///   removing one of its shapes, wakes the islands it touches.
 ///
 /// Threading: a World is not thread-safe; distinct worlds share nothing.
 
