@@ -81,6 +81,14 @@ public:
     bool isSleeping(std::uint32_t index) const {
         return info[index].type == BodyType::Dynamic && !isAwake(index);
     }
+    bool isAwakeDynamic(std::uint32_t index) const {
+        return info[index].type == BodyType::Dynamic && isAwake(index);
+    }
+    /// A kinematic body with any velocity: what it touches cannot rest.
+    bool isMovingKinematic(std::uint32_t index) const {
+        return info[index].type == BodyType::Kinematic &&
+               !(motion[index].linearVelocity.isZero(0) && motion[index].angularVelocity.isZero(0));
+    }
     /// Appends the body to the awake list (it must not be on it).
     void markAwake(std::uint32_t index);
     /// Takes the body off the awake list (it must be on it); the last entry takes its place.

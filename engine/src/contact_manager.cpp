@@ -268,11 +268,6 @@ void ContactManager::updateContacts(const ShapeStore& shapes, BodyStore& bodies,
 
 void ContactManager::collideActive(const ShapeStore& shapes, BodyStore& bodies,
                                    const StepContext& context) {
-    const auto isMovingKinematic = [&bodies](std::uint32_t index) {
-        const BodyMotion& m = bodies.motion[index];
-        return bodies.info[index].type == BodyType::Kinematic &&
-               !(m.linearVelocity.isZero(0) && m.angularVelocity.isZero(0));
-    };
     for (const std::uint32_t slot : active_) {
         Record& record = pool_[slot];
         const ShapeRecord& shapeA = shapes.records[record.contact.shapeA.index];
@@ -297,10 +292,10 @@ void ContactManager::collideActive(const ShapeStore& shapes, BodyStore& bodies,
         if (next.manifold.pointCount == 0)
             continue;
         if (bodies.isSleeping(indexA) &&
-            (bodies.info[indexB].type == BodyType::Dynamic || isMovingKinematic(indexB)))
+            (bodies.info[indexB].type == BodyType::Dynamic || bodies.isMovingKinematic(indexB)))
             wakeRequests_.push_back(indexA);
         if (bodies.isSleeping(indexB) &&
-            (bodies.info[indexA].type == BodyType::Dynamic || isMovingKinematic(indexA)))
+            (bodies.info[indexA].type == BodyType::Dynamic || bodies.isMovingKinematic(indexA)))
             wakeRequests_.push_back(indexB);
     }
 }

@@ -13,16 +13,6 @@ bool isTouching(const Contact& contact) {
     return contact.manifold.pointCount > 0;
 }
 
-bool isMovingKinematic(const BodyStore& bodies, std::uint32_t index) {
-    const BodyMotion& m = bodies.motion[index];
-    return bodies.info[index].type == BodyType::Kinematic &&
-           !(m.linearVelocity.isZero(0) && m.angularVelocity.isZero(0));
-}
-
-bool isAwakeDynamic(const BodyStore& bodies, std::uint32_t index) {
-    return bodies.info[index].type == BodyType::Dynamic && bodies.isAwake(index);
-}
-
 }  // namespace
 
 void Islands::wake(BodyStore& bodies, ContactManager& contacts, std::uint32_t index,
@@ -73,7 +63,7 @@ void Islands::wakeAround(BodyStore& bodies, ContactManager& contacts, std::uint3
 }
 
 void Islands::sleepIslandOf(BodyStore& bodies, ContactManager& contacts, std::uint32_t index) {
-    if (!isAwakeDynamic(bodies, index))
+    if (!bodies.isAwakeDynamic(index))
         return;
     visited_.assign(bodies.awake.size(), 0);
     sleepers_.clear();
@@ -86,7 +76,7 @@ void Islands::sleepIslandOf(BodyStore& bodies, ContactManager& contacts, std::ui
         sleepers_.push_back(body);
         contacts.forEachContact(bodies, body,
                                 [&](std::uint32_t, const Contact& contact, std::uint32_t other) {
-                                    if (!isTouching(contact) || !isAwakeDynamic(bodies, other) ||
+                                    if (!isTouching(contact) || !bodies.isAwakeDynamic(other) ||
                                         visited_[bodies.info[other].awakeIndex] != 0)
                                         return;
                                     visited_[bodies.info[other].awakeIndex] = 1;
@@ -136,13 +126,13 @@ void Islands::updateSleep(BodyStore& bodies, ContactManager& contacts, const Ste
             continue;
         const std::uint32_t a = bodies.indexOf(contact.bodyA);
         const std::uint32_t b = bodies.indexOf(contact.bodyB);
-        const bool dynamicA = isAwakeDynamic(bodies, a);
-        const bool dynamicB = isAwakeDynamic(bodies, b);
+        const bool dynamicA = bodies.isAwakeDynamic(a);
+        const bool dynamicB = bodies.isAwakeDynamic(b);
         if (dynamicA && dynamicB) {
             unite(bodies.info[a].awakeIndex, bodies.info[b].awakeIndex);
-        } else if (dynamicA && isMovingKinematic(bodies, b)) {
+        } else if (dynamicA && bodies.isMovingKinematic(b)) {
             bodies.info[a].sleepTime = 0;  // carried or pushed: not at rest
-        } else if (dynamicB && isMovingKinematic(bodies, a)) {
+        } else if (dynamicB && bodies.isMovingKinematic(a)) {
             bodies.info[b].sleepTime = 0;
         }
     }

@@ -198,6 +198,11 @@ TEST(Sleep, ApiChangesWakeTheBody) {
              w.createShape(b, ShapeDef{.geometry = Sphere{0.2},
                                        .localPose = {Vec3(0, 0, 0.5), Quat::Identity()}});
          }},
+        {"destroyShape",
+         [](World& w, BodyId b) {
+             const Contact& ground = w.contacts()[0];
+             w.destroyShape(ground.bodyA == b ? ground.shapeA : ground.shapeB);
+         }},
         {"setAwake", [](World& w, BodyId b) { w.setAwake(b, true); }},
     };
     for (const Case& c : cases) {
