@@ -36,14 +36,20 @@ BodyId BodyStore::add(const BodyDef& def) {
     bodyInfo.gravityScale = def.gravityScale;
     bodyInfo.userData = def.userData;
     bodyInfo.slot = slotIndex;
+    bodyInfo.allowSleep = def.allowSleep;
+    bodyInfo.builtAsleep = def.type == BodyType::Dynamic && !def.awake;
     info.push_back(bodyInfo);
     setMass(slot.dense, def.mass);
     previousMotion.back() = motion.back();
+    if (def.type == BodyType::Kinematic || (def.type == BodyType::Dynamic && def.awake))
+        markAwake(slot.dense);
     return BodyId{slotIndex, slot.generation};
 }
 
 void BodyStore::remove(BodyId id) {
     const std::uint32_t index = indexOf(id);
+    if (isAwake(index))
+        markNotAwake(index);
     const std::uint32_t last = count() - 1;
     if (index != last) {
         motion[index] = motion[last];
@@ -52,6 +58,8 @@ void BodyStore::remove(BodyId id) {
         forces[index] = forces[last];
         info[index] = info[last];
         slots_[info[index].slot].dense = index;
+        if (isAwake(index))
+            awake[info[index].awakeIndex] = index;
     }
     motion.pop_back();
     previousMotion.pop_back();
@@ -80,6 +88,31 @@ std::uint32_t BodyStore::indexOf(BodyId id) const {
 BodyId BodyStore::idAt(std::uint32_t index) const {
     const std::uint32_t slot = info[index].slot;
     return BodyId{slot, slots_[slot].generation};
+}
+
+void BodyStore::markAwake(std::uint32_t index) {
+    info[index].builtAsleep = false;
+    info[index].awakeIndex = static_cast<std::uint32_t>(awake.size());
+    awake.push_back(index);
+}
+
+void BodyStore::markNotAwake(std::uint32_t index) {
+    const std::uint32_t position = info[index].awakeIndex;
+    const std::uint32_t moved = awake.back();
+    awake[position] = moved;
+    info[moved].awakeIndex = position;
+    awake.pop_back();
+    info[index].awakeIndex = BodyInfo::kNone;
+}
+
+void BodyStore::savePreviousMotion() {
+    for (const std::uint32_t i : awake)
+        previousMotion[i] = motion[i];
+}
+
+void BodyStore::restorePreviousMotion() {
+    for (const std::uint32_t i : awake)
+        motion[i] = previousMotion[i];
 }
 
 void BodyStore::setMass(std::uint32_t index, const MassProperties& mass) {

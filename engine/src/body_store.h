@@ -5,6 +5,10 @@
 /// generation must match. Destroying a body moves the last body into its dense index, so dense
 /// order depends only on the sequence of create/destroy calls -- never on addresses or hashing --
 /// which keeps stepping deterministic.
+///
+/// Awake bodies (dynamic bodies not asleep, and every kinematic body) are also listed in `awake`,
+/// which is what the per-body loops of a step walk: a sleeping or static body is never visited.
+/// The list's order depends only on the sequence of create/destroy/wake/sleep events.
 
 #include <cstdint>
 #include <vector>
@@ -43,9 +47,20 @@ struct BodyInfo {
     std::uint64_t userData = 0;
     std::uint32_t slot = 0;               ///< back-reference to the id's slot
     std::uint32_t firstShape = kNoShape;  ///< slot of the body's first shape
-    bool massFromShapes = false;          ///< mass properties come from the shapes
+    std::uint32_t firstContact = kNone;   ///< head of its contact list (ContactManager edges)
+    std::uint32_t awakeIndex = kNone;     ///< position in BodyStore::awake; kNone when not awake
+    Real sleepTime = 0;                   ///< how long it has been still (s)
+    bool allowSleep = true;
+    /// Changed through the API since the last step: the next step does not count as still, so
+    /// a body pushed every step never sleeps, however long the step.
+    bool pushed = false;
+    /// Created asleep (BodyDef::awake = false) and not woken since: adding shapes to it does not
+    /// wake it, so a pile can be built asleep.
+    bool builtAsleep = false;
+    bool massFromShapes = false;  ///< mass properties come from the shapes
 
     static constexpr std::uint32_t kNoShape = 0xFFFFFFFF;
+    static constexpr std::uint32_t kNone = 0xFFFFFFFF;
 };
 
 class BodyStore {
@@ -61,6 +76,28 @@ public:
 
     void setMass(std::uint32_t index, const MassProperties& mass);
 
+    bool isAwake(std::uint32_t index) const { return info[index].awakeIndex != BodyInfo::kNone; }
+    /// A dynamic body that is not awake.
+    bool isSleeping(std::uint32_t index) const {
+        return info[index].type == BodyType::Dynamic && !isAwake(index);
+    }
+    bool isAwakeDynamic(std::uint32_t index) const {
+        return info[index].type == BodyType::Dynamic && isAwake(index);
+    }
+    /// A kinematic body with any velocity: what it touches cannot rest.
+    bool isMovingKinematic(std::uint32_t index) const {
+        return info[index].type == BodyType::Kinematic &&
+               !(motion[index].linearVelocity.isZero(0) && motion[index].angularVelocity.isZero(0));
+    }
+    /// Appends the body to the awake list (it must not be on it).
+    void markAwake(std::uint32_t index);
+    /// Takes the body off the awake list (it must be on it); the last entry takes its place.
+    void markNotAwake(std::uint32_t index);
+    /// previousMotion = motion for the awake bodies (the others do not move).
+    void savePreviousMotion();
+    /// motion = previousMotion for the awake bodies.
+    void restorePreviousMotion();
+
     // Parallel arrays, all of size count().
     std::vector<BodyMotion> motion;
     std::vector<BodyMotion>
@@ -68,6 +105,7 @@ public:
     std::vector<BodyInertia> inertia;
     std::vector<BodyForces> forces;
     std::vector<BodyInfo> info;
+    std::vector<std::uint32_t> awake;  ///< dense indices of the awake bodies
 
 private:
     struct Slot {

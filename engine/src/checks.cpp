@@ -87,6 +87,17 @@ void bodyDef(const BodyDef& def) {
         fail("BodyDef.gravityScale = ", def.gravityScale, " must be finite");
     if (def.type == BodyType::Dynamic)
         massProperties(def.mass, "BodyDef.mass");
+    if (!def.awake) {
+        if (def.type != BodyType::Dynamic)
+            fail("BodyDef.awake = false: only a dynamic body can be created asleep");
+        if (!def.allowSleep)
+            fail("BodyDef.awake = false contradicts BodyDef.allowSleep = false");
+        if (!def.linearVelocity.isZero(0) || !def.angularVelocity.isZero(0)) {
+            fail("BodyDef.awake = false with linearVelocity = ", format(def.linearVelocity),
+                 " and angularVelocity = ", format(def.angularVelocity),
+                 ": a body created asleep is at rest, both must be zero");
+        }
+    }
 }
 
 void material(const Material& m, std::string_view what) {
@@ -123,6 +134,16 @@ void worldDef(const WorldDef& def) {
     if (def.maxStepsPerAdvance < 1) {
         fail("WorldDef.maxStepsPerAdvance = ", def.maxStepsPerAdvance, " must be >= 1");
     }
+    if (!(std::isfinite(def.linearSleepVelocity) && def.linearSleepVelocity >= 0)) {
+        fail("WorldDef.linearSleepVelocity = ", def.linearSleepVelocity,
+             " (m/s) must be finite and >= 0");
+    }
+    if (!(std::isfinite(def.angularSleepVelocity) && def.angularSleepVelocity >= 0)) {
+        fail("WorldDef.angularSleepVelocity = ", def.angularSleepVelocity,
+             " (rad/s) must be finite and >= 0");
+    }
+    if (!(std::isfinite(def.timeToSleep) && def.timeToSleep > 0))
+        fail("WorldDef.timeToSleep = ", def.timeToSleep, " (s) must be finite and > 0");
 }
 
 }  // namespace tumble::checks

@@ -1,6 +1,7 @@
 #include "contact_manager.h"
 
 #include <algorithm>
+#include <iterator>
 
 #include "tumble/collision/narrowphase.h"
 
@@ -66,8 +67,19 @@ void ContactManager::addShape(ShapeStore& shapes, std::uint32_t slot, const Body
     proxyToShape_[shape.proxy] = slot;
 }
 
-void ContactManager::removeShape(ShapeStore& shapes, std::uint32_t slot) {
-    broadphase_.remove(shapes.records[slot].proxy);
+void ContactManager::removeShape(ShapeStore& shapes, std::uint32_t slot, BodyStore& bodies) {
+    const ShapeRecord& shape = shapes.records[slot];
+    broadphase_.remove(shape.proxy);
+    const ShapeId id = shapes.idAt(slot);
+    const std::uint32_t bodyIndex = bodies.indexOf(shape.body);
+    std::uint32_t edge = bodies.info[bodyIndex].firstContact;
+    while (edge != kNone) {
+        const std::uint32_t contactSlot = edge >> 1;
+        edge = pool_[contactSlot].next[edge & 1];  // before destroy() unlinks it
+        const Contact& contact = pool_[contactSlot].contact;
+        if (contact.shapeA == id || contact.shapeB == id)
+            destroy(contactSlot, bodies);
+    }
 }
 
 void ContactManager::refreshShape(ShapeStore& shapes, std::uint32_t slot, const BodyStore& bodies,
@@ -84,54 +96,225 @@ void ContactManager::refreshShape(ShapeStore& shapes, std::uint32_t slot, const 
 
 void ContactManager::refreshBounds(ShapeStore& shapes, const BodyStore& bodies,
                                    const StepContext& context) {
-    const std::uint32_t count = static_cast<std::uint32_t>(shapes.records.size());
-    for (std::uint32_t slot = 0; slot < count; ++slot) {
-        const ShapeRecord& shape = shapes.records[slot];
-        if (!shape.alive)
-            continue;
-        if (bodies.info[bodies.indexOf(shape.body)].type == BodyType::Static)
-            continue;
-        refreshShape(shapes, slot, bodies, context.h);
+    for (const std::uint32_t index : bodies.awake) {
+        for (std::uint32_t slot = bodies.info[index].firstShape; slot != BodyInfo::kNoShape;
+             slot = shapes.records[slot].nextInBody) {
+            refreshShape(shapes, slot, bodies, context.h);
+        }
     }
 }
 
-void ContactManager::updateContacts(const ShapeStore& shapes, const BodyStore& bodies,
+void ContactManager::link(std::uint32_t slot, int side, BodyInfo& body) {
+    Record& record = pool_[slot];
+    const std::uint32_t edge = slot * 2 + static_cast<std::uint32_t>(side);
+    record.previous[side] = kNone;
+    record.next[side] = body.firstContact;
+    if (body.firstContact != kNone)
+        pool_[body.firstContact >> 1].previous[body.firstContact & 1] = edge;
+    body.firstContact = edge;
+}
+
+void ContactManager::unlink(std::uint32_t slot, int side, BodyInfo& body) {
+    Record& record = pool_[slot];
+    const std::uint32_t previous = record.previous[side];
+    const std::uint32_t next = record.next[side];
+    if (previous != kNone)
+        pool_[previous >> 1].next[previous & 1] = next;
+    else
+        body.firstContact = next;
+    if (next != kNone)
+        pool_[next >> 1].previous[next & 1] = previous;
+}
+
+void ContactManager::create(const ProxyPair& pair, const ShapeStore& shapes, BodyStore& bodies) {
+    const std::uint32_t slotA = proxyToShape_[pair.first];
+    const std::uint32_t slotB = proxyToShape_[pair.second];
+    const ShapeRecord& shapeA = shapes.records[slotA];
+    const ShapeRecord& shapeB = shapes.records[slotB];
+    if (shapeA.body == shapeB.body)
+        return;  // parts of one compound never collide
+    const std::uint32_t indexA = bodies.indexOf(shapeA.body);
+    const std::uint32_t indexB = bodies.indexOf(shapeB.body);
+    if (bodies.info[indexA].type != BodyType::Dynamic &&
+        bodies.info[indexB].type != BodyType::Dynamic)
+        return;
+
+    std::uint32_t slot;
+    if (freeSlots_.empty()) {
+        slot = static_cast<std::uint32_t>(pool_.size());
+        pool_.emplace_back();
+    } else {
+        slot = freeSlots_.back();
+        freeSlots_.pop_back();
+    }
+    Record& record = pool_[slot];
+    record = Record{};
+    record.contact.shapeA = shapes.idAt(slotA);
+    record.contact.shapeB = shapes.idAt(slotB);
+    record.contact.bodyA = shapeA.body;
+    record.contact.bodyB = shapeB.body;
+    record.key = pair;
+    record.alive = true;
+    link(slot, 0, bodies.info[indexA]);
+    link(slot, 1, bodies.info[indexB]);
+    if (bodies.isAwake(indexA) || bodies.isAwake(indexB))
+        activate(slot);
+    // A static or kinematic shape teleported next to sleeping bodies wakes them: it may overlap
+    // them, and a static one would otherwise never be collided with them. Other new pairs wake
+    // nothing (a body created asleep stays asleep on the ground; an awake dynamic body wakes a
+    // sleeper once it touches it, in collideActive).
+    if (std::binary_search(placedProxies_.begin(), placedProxies_.end(), pair.first) ||
+        std::binary_search(placedProxies_.begin(), placedProxies_.end(), pair.second)) {
+        for (const std::uint32_t index : {indexA, indexB}) {
+            if (bodies.isSleeping(index))
+                wakeRequests_.push_back(index);
+        }
+    }
+}
+
+void ContactManager::markPlaced(std::uint32_t proxy) {
+    const auto at = std::lower_bound(placedProxies_.begin(), placedProxies_.end(), proxy);
+    if (at == placedProxies_.end() || *at != proxy)
+        placedProxies_.insert(at, proxy);
+}
+
+void ContactManager::destroy(std::uint32_t slot, BodyStore& bodies) {
+    Record& record = pool_[slot];
+    unlink(slot, 0, bodies.info[bodies.indexOf(record.contact.bodyA)]);
+    unlink(slot, 1, bodies.info[bodies.indexOf(record.contact.bodyB)]);
+    record.alive = false;
+    record.active = false;
+    dead_.push_back(slot);
+    viewStale_ = true;
+}
+
+std::uint32_t ContactManager::find(const ProxyPair& pair, const ShapeStore& shapes,
+                                   const BodyStore& bodies) const {
+    // A destroyed shape's contacts went with it; its slot may already hold a new shape.
+    const ShapeRecord& shapeA = shapes.records[proxyToShape_[pair.first]];
+    const ShapeRecord& shapeB = shapes.records[proxyToShape_[pair.second]];
+    if (!(shapeA.alive && shapeA.proxy == pair.first && shapeB.alive &&
+          shapeB.proxy == pair.second))
+        return kNone;
+    // Walk the list of a non-static body: a static body (the ground) may have thousands.
+    std::uint32_t index = bodies.indexOf(shapeA.body);
+    if (bodies.info[index].type == BodyType::Static)
+        index = bodies.indexOf(shapeB.body);
+    for (std::uint32_t edge = bodies.info[index].firstContact; edge != kNone;
+         edge = pool_[edge >> 1].next[edge & 1]) {
+        if (pool_[edge >> 1].key == pair)
+            return edge >> 1;
+    }
+    return kNone;
+}
+
+void ContactManager::activate(std::uint32_t slot) {
+    Record& record = pool_[slot];
+    record.active = true;
+    if (!record.listed && !record.queued) {
+        record.queued = true;
+        activated_.push_back(slot);
+    }
+}
+
+void ContactManager::flushActivations() {
+    if (activated_.empty())
+        return;
+    std::erase_if(activated_, [this](std::uint32_t slot) {
+        Record& record = pool_[slot];
+        record.queued = false;
+        return !(record.alive && record.active && !record.listed);
+    });
+    const auto byKey = [this](std::uint32_t a, std::uint32_t b) {
+        return pool_[a].key < pool_[b].key;
+    };
+    std::sort(activated_.begin(), activated_.end(), byKey);
+    for (const std::uint32_t slot : activated_)
+        pool_[slot].listed = true;
+    scratch_.clear();
+    std::merge(active_.begin(), active_.end(), activated_.begin(), activated_.end(),
+               std::back_inserter(scratch_), byKey);
+    active_.swap(scratch_);
+    activated_.clear();
+}
+
+void ContactManager::compactActive() {
+    std::erase_if(active_, [this](std::uint32_t slot) {
+        Record& record = pool_[slot];
+        record.listed = record.active;
+        return !record.active;
+    });
+}
+
+void ContactManager::updateContacts(const ShapeStore& shapes, BodyStore& bodies,
                                     const StepContext& context) {
-    nextContacts_.clear();
-    nextKeys_.clear();
-    std::size_t old = 0;
-    for (const ProxyPair& pair : broadphase_.pairs()) {
-        const ShapeRecord& shapeA = shapes.records[proxyToShape_[pair.first]];
-        const ShapeRecord& shapeB = shapes.records[proxyToShape_[pair.second]];
-        if (shapeA.body == shapeB.body)
-            continue;  // parts of one compound never collide
+    for (const ProxyPair& pair : broadphase_.removedPairs()) {
+        const std::uint32_t slot = find(pair, shapes, bodies);
+        if (slot != kNone)
+            destroy(slot, bodies);
+    }
+    compactActive();
+    for (const ProxyPair& pair : broadphase_.addedPairs())
+        create(pair, shapes, bodies);
+    placedProxies_.clear();
+    flushActivations();
+    // Nothing lists a destroyed contact any more: its slot may be reused.
+    for (const std::uint32_t slot : dead_)
+        freeSlots_.push_back(slot);
+    dead_.clear();
+    collideActive(shapes, bodies, context);
+    viewStale_ = true;
+}
+
+void ContactManager::collideActive(const ShapeStore& shapes, BodyStore& bodies,
+                                   const StepContext& context) {
+    for (const std::uint32_t slot : active_) {
+        Record& record = pool_[slot];
+        const ShapeRecord& shapeA = shapes.records[record.contact.shapeA.index];
+        const ShapeRecord& shapeB = shapes.records[record.contact.shapeB.index];
         const std::uint32_t indexA = bodies.indexOf(shapeA.body);
         const std::uint32_t indexB = bodies.indexOf(shapeB.body);
-        if (bodies.info[indexA].type != BodyType::Dynamic &&
-            bodies.info[indexB].type != BodyType::Dynamic)
-            continue;
 
-        Contact contact;
-        contact.shapeA = shapes.idAt(proxyToShape_[pair.first]);
-        contact.shapeB = shapes.idAt(proxyToShape_[pair.second]);
-        contact.bodyA = shapeA.body;
-        contact.bodyB = shapeB.body;
+        Contact next = record.contact;
+        next.manifold = Manifold{};
+        next.normalImpulse = {};
+        next.tangentImpulse.fill(Vec3::Zero());
         const Vec3 relativeVelocity =
             bodies.motion[indexB].linearVelocity - bodies.motion[indexA].linearVelocity;
         const Real margin = contactMargin + context.h * relativeVelocity.norm();
         collide(shapeA.def.geometry, shapePose(shapeA, bodies), shapeB.def.geometry,
-                shapePose(shapeB, bodies), margin, contact.manifold);
+                shapePose(shapeB, bodies), margin, next.manifold);
+        carryImpulses(record.contact, next);
+        record.contact = next;
 
-        // Both lists are sorted by pair: advance the old one to this pair to find its cache.
-        while (old < contactKeys_.size() && contactKeys_[old] < pair)
-            ++old;
-        if (old < contactKeys_.size() && contactKeys_[old] == pair)
-            carryImpulses(contacts_[old], contact);
-        nextContacts_.push_back(contact);
-        nextKeys_.push_back(pair);
+        // Touching a sleeping body wakes it -- unless the toucher is a kinematic body at rest
+        // (a resting pile on a parked platform stays asleep).
+        if (next.manifold.pointCount == 0)
+            continue;
+        if (bodies.isSleeping(indexA) &&
+            (bodies.info[indexB].type == BodyType::Dynamic || bodies.isMovingKinematic(indexB)))
+            wakeRequests_.push_back(indexA);
+        if (bodies.isSleeping(indexB) &&
+            (bodies.info[indexA].type == BodyType::Dynamic || bodies.isMovingKinematic(indexA)))
+            wakeRequests_.push_back(indexB);
     }
-    contacts_.swap(nextContacts_);
-    contactKeys_.swap(nextKeys_);
+}
+
+std::span<const Contact> ContactManager::contacts() const {
+    if (!viewStale_)
+        return view_;
+    viewOrder_.clear();
+    for (std::uint32_t slot = 0; slot < pool_.size(); ++slot) {
+        if (pool_[slot].alive)
+            viewOrder_.push_back(slot);
+    }
+    std::sort(viewOrder_.begin(), viewOrder_.end(),
+              [this](std::uint32_t a, std::uint32_t b) { return pool_[a].key < pool_[b].key; });
+    view_.clear();
+    for (const std::uint32_t slot : viewOrder_)
+        view_.push_back(pool_[slot].contact);
+    viewStale_ = false;
+    return view_;
 }
 
 }  // namespace tumble

@@ -2,10 +2,19 @@
 /// The collision stages of a step: broadphase (bounds and pairs) and narrowphase (manifolds),
 /// with the contact cache that carries impulses from one step to the next.
 ///
-/// Contacts are kept in the broadphase's pair order (sorted by proxy ids), so the narrowphase
-/// and everything after it see pairs in an order that depends only on the scene's history,
-/// never on addresses or hashing.
+/// Storage. Every broadphase pair that may collide (shapes of two bodies, at least one dynamic)
+/// owns a contact record in a pool of stable slots, threaded on both bodies' contact lists
+/// (intrusive and doubly linked: an island is walked, and a body's contacts removed, in time
+/// proportional to its contacts). A contact is *active* while at least one of its bodies is awake
+/// (a dynamic body not asleep, or a kinematic body); only active contacts are collided and
+/// solved. The contacts of a sleeping island are *parked*: kept with their manifolds and cached
+/// impulses, visited by nothing per step, and activated again when the island wakes.
+///
+/// Determinism: the active list is kept sorted by pair (proxy ids), so the narrowphase and the
+/// solver see contacts in an order that depends only on the scene's history; body contact lists
+/// and pool slots are likewise history-ordered, never by address or hash.
 
+#include <array>
 #include <span>
 #include <vector>
 
@@ -21,24 +30,55 @@ class ContactManager {
 public:
     /// Registers a shape with the broadphase at its body's current pose.
     void addShape(ShapeStore& shapes, std::uint32_t slot, const BodyStore& bodies, Real h);
-    void removeShape(ShapeStore& shapes, std::uint32_t slot);
+    /// Takes a shape out of the broadphase and destroys its contacts at once (the body must
+    /// still be alive).
+    void removeShape(ShapeStore& shapes, std::uint32_t slot, BodyStore& bodies);
     /// Re-reads one shape's bounds after a teleport (setTransform) or a new pose.
     void refreshShape(ShapeStore& shapes, std::uint32_t slot, const BodyStore& bodies, Real h);
 
-    /// After the bodies moved: refresh the tight bounds of every non-static shape and move the
+    /// After the bodies moved: refresh the tight bounds of the awake bodies' shapes and move the
     /// proxies whose box, swept over the next step, left their fat box. Bounds are therefore
-    /// always those of the current poses, and queries between steps see them.
+    /// always those of the current poses (sleeping and static bodies do not move), and queries
+    /// between steps see them.
     void refreshBounds(ShapeStore& shapes, const BodyStore& bodies, const StepContext& context);
     /// Broadphase stage: update the pair set from the fat boxes.
     void updatePairs() { broadphase_.update(); }
-    /// Narrowphase stage: a manifold for every broadphase pair that may touch, with impulses of
-    /// persisting points carried over (matched by feature id, else by proximity).
-    void updateContacts(const ShapeStore& shapes, const BodyStore& bodies,
-                        const StepContext& context);
+    /// Narrowphase stage: creates and destroys contacts as broadphase pairs appear and vanish,
+    /// then computes a manifold for every active contact, with impulses of persisting points
+    /// carried over (matched by feature id, else by proximity). A sleeping body that an awake
+    /// dynamic body or a moving kinematic body touches is listed in wakeRequests().
+    void updateContacts(const ShapeStore& shapes, BodyStore& bodies, const StepContext& context);
 
-    std::span<const Contact> contacts() const { return contacts_; }
-    /// For the solve stage, which writes the impulses it found back into the cache.
-    std::span<Contact> mutableContacts() { return contacts_; }
+    // --- active and parked contacts (for the islands and solve stages) -----------------------
+    /// Slots of the active contacts in pair order. Contacts parked since the last narrowphase
+    /// stay listed (isActive false) until the next one.
+    std::span<const std::uint32_t> activeSlots() const { return active_; }
+    bool isActive(std::uint32_t slot) const { return pool_[slot].active; }
+    Contact& contact(std::uint32_t slot) { return pool_[slot].contact; }
+    const Contact& contact(std::uint32_t slot) const { return pool_[slot].contact; }
+    /// Marks a parked contact active; it is listed at flushActivations() or the next
+    /// narrowphase, whichever comes first.
+    void activate(std::uint32_t slot);
+    /// Parks a contact (both its bodies are asleep or static).
+    void deactivate(std::uint32_t slot) { pool_[slot].active = false; }
+    /// Lists the contacts activated since the last narrowphase, so this step solves them.
+    void flushActivations();
+    /// Calls visit(slot, contact, otherBodyIndex) for each contact of body `index`. visit may
+    /// activate or deactivate contacts, but not create or destroy them.
+    template <typename Visit>
+    void forEachContact(const BodyStore& bodies, std::uint32_t index, Visit&& visit) const;
+
+    /// A static or kinematic body's shape was teleported: the sleeping bodies it pairs with at
+    /// the next broadphase update are woken (see wakeRequests()).
+    void markPlaced(std::uint32_t proxy);
+    /// Dense indices of sleeping bodies the last narrowphase found touched (or that a placed
+    /// shape reached); valid until the bodies change.
+    std::span<const std::uint32_t> wakeRequests() const { return wakeRequests_; }
+    void clearWakeRequests() { wakeRequests_.clear(); }
+
+    /// Every contact, active or parked, in pair order. Built when asked (it is not needed by the
+    /// step), so sleeping contacts cost nothing unless the application reads them.
+    std::span<const Contact> contacts() const;
     const SweepAndPrune& broadphase() const { return broadphase_; }
     std::uint32_t shapeOfProxy(std::uint32_t proxy) const { return proxyToShape_[proxy]; }
 
@@ -46,13 +86,62 @@ public:
     Real aabbMargin = 0.1;      ///< fat box growth (m)
 
 private:
+    static constexpr std::uint32_t kNone = 0xFFFFFFFF;
+
+    struct Record {
+        Contact contact;
+        ProxyPair key;
+        /// Edges (slot * 2 + side; side 0 = body A, 1 = body B) of the neighbours on body A's
+        /// [0] and body B's [1] contact lists.
+        std::array<std::uint32_t, 2> next{kNone, kNone};
+        std::array<std::uint32_t, 2> previous{kNone, kNone};
+        bool alive = false;
+        bool active = false;
+        bool listed = false;  ///< in active_ (dropped at the next narrowphase if not active)
+        bool queued = false;  ///< in activated_, waiting to be listed
+    };
+
+    /// Creates the contact of a new broadphase pair, if its shapes may collide.
+    void create(const ProxyPair& pair, const ShapeStore& shapes, BodyStore& bodies);
+    /// Unlinks a contact from its bodies; its slot is reused once no list holds it.
+    void destroy(std::uint32_t slot, BodyStore& bodies);
+    /// The live contact of a pair, or kNone.
+    std::uint32_t find(const ProxyPair& pair, const ShapeStore& shapes,
+                       const BodyStore& bodies) const;
+    void link(std::uint32_t slot, int side, BodyInfo& body);
+    void unlink(std::uint32_t slot, int side, BodyInfo& body);
+    /// Drops inactive contacts from active_ and frees the slots of destroyed ones.
+    void compactActive();
+    void collideActive(const ShapeStore& shapes, BodyStore& bodies, const StepContext& context);
+
     SweepAndPrune broadphase_;
     std::vector<std::uint32_t> proxyToShape_;
-    std::vector<Contact> contacts_;
-    std::vector<ProxyPair> contactKeys_;
-    std::vector<Contact> nextContacts_;
-    std::vector<ProxyPair> nextKeys_;
+    std::vector<Record> pool_;
+    std::vector<std::uint32_t> freeSlots_;  ///< reused last-in first-out
+    std::vector<std::uint32_t> dead_;       ///< destroyed, not yet free
+    std::vector<std::uint32_t> active_;     ///< sorted by key
+    std::vector<std::uint32_t> activated_;  ///< to merge into active_
+    std::vector<std::uint32_t> scratch_;
+    std::vector<std::uint32_t> wakeRequests_;
+    std::vector<std::uint32_t> placedProxies_;  ///< sorted; see markPlaced
+    mutable std::vector<Contact> view_;
+    mutable std::vector<std::uint32_t> viewOrder_;
+    mutable bool viewStale_ = true;
 };
+
+template <typename Visit>
+void ContactManager::forEachContact(const BodyStore& bodies, std::uint32_t index,
+                                    Visit&& visit) const {
+    std::uint32_t edge = bodies.info[index].firstContact;
+    while (edge != kNone) {
+        const std::uint32_t slot = edge >> 1;
+        const int side = static_cast<int>(edge & 1);
+        const Record& record = pool_[slot];
+        edge = record.next[side];
+        const BodyId other = side == 0 ? record.contact.bodyB : record.contact.bodyA;
+        visit(slot, record.contact, bodies.indexOf(other));
+    }
+}
 
 /// The world pose of a shape on a body (body origin pose composed with the shape's local pose).
 Transform shapePose(const ShapeRecord& shape, const BodyStore& bodies);

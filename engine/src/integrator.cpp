@@ -36,45 +36,44 @@ Vec3 gyroscopicMidpoint(const Mat3& inertia, const Vec3& w0, Real h) {
 }
 
 void integrateVelocities(BodyStore& bodies, const StepContext& context) {
-    const Real h = context.h;
-    const std::uint32_t count = bodies.count();
-    for (std::uint32_t i = 0; i < count; ++i) {
-        const BodyInfo& info = bodies.info[i];
-        if (info.type != BodyType::Dynamic)
-            continue;
-        BodyMotion& m = bodies.motion[i];
-        const BodyInertia& inertia = bodies.inertia[i];
-        const BodyForces& forces = bodies.forces[i];
-
-        m.linearVelocity +=
-            h * (info.gravityScale * context.gravity + inertia.inverseMass * forces.force);
-
-        // Angular part in body axes, where the inertia is constant.
-        const Mat3 rotation = m.orientation.toRotationMatrix();
-        Vec3 bodyOmega = rotation.transpose() * m.angularVelocity;
-        bodyOmega += h * (inertia.inverseInertiaLocal * (rotation.transpose() * forces.torque));
-        bodyOmega = gyroscopicMidpoint(inertia.inertiaLocal, bodyOmega, h);
-
-        // Implicit damping dv/dt = -c v: unconditionally stable, never reverses the velocity.
-        m.linearVelocity /= 1 + h * info.linearDamping;
-        bodyOmega /= 1 + h * info.angularDamping;
-        m.angularVelocity = rotation * bodyOmega;
+    for (const std::uint32_t index : bodies.awake) {
+        if (bodies.info[index].type == BodyType::Dynamic)
+            integrateVelocity(bodies, index, context);
     }
+}
+
+void integrateVelocity(BodyStore& bodies, std::uint32_t index, const StepContext& context) {
+    const Real h = context.h;
+    const BodyInfo& info = bodies.info[index];
+    BodyMotion& m = bodies.motion[index];
+    const BodyInertia& inertia = bodies.inertia[index];
+    const BodyForces& forces = bodies.forces[index];
+
+    m.linearVelocity +=
+        h * (info.gravityScale * context.gravity + inertia.inverseMass * forces.force);
+
+    // Angular part in body axes, where the inertia is constant.
+    const Mat3 rotation = m.orientation.toRotationMatrix();
+    Vec3 bodyOmega = rotation.transpose() * m.angularVelocity;
+    bodyOmega += h * (inertia.inverseInertiaLocal * (rotation.transpose() * forces.torque));
+    bodyOmega = gyroscopicMidpoint(inertia.inertiaLocal, bodyOmega, h);
+
+    // Implicit damping dv/dt = -c v: unconditionally stable, never reverses the velocity.
+    m.linearVelocity /= 1 + h * info.linearDamping;
+    bodyOmega /= 1 + h * info.angularDamping;
+    m.angularVelocity = rotation * bodyOmega;
 }
 
 void integratePositions(BodyStore& bodies, std::span<const PseudoVelocity> pseudo,
                         const StepContext& context) {
     const Real h = context.h;
-    const std::uint32_t count = bodies.count();
-    for (std::uint32_t i = 0; i < count; ++i) {
-        if (bodies.info[i].type == BodyType::Static)
-            continue;
-        BodyMotion& m = bodies.motion[i];
+    for (std::size_t k = 0; k < bodies.awake.size(); ++k) {
+        BodyMotion& m = bodies.motion[bodies.awake[k]];
         Vec3 linear = m.linearVelocity;
         Vec3 angular = m.angularVelocity;
         if (!pseudo.empty()) {
-            linear += pseudo[i].linear;
-            angular += pseudo[i].angular;
+            linear += pseudo[k].linear;
+            angular += pseudo[k].angular;
         }
         m.center += h * linear;
         const Vec3 rotationVector = h * angular;

@@ -12,15 +12,18 @@
 
 namespace tumble {
 
-/// Gravity, applied forces and torques, the gyroscopic term and damping -> velocities of dynamic
-/// bodies. Kinematic and static bodies keep their velocities.
+/// Gravity, applied forces and torques, the gyroscopic term and damping -> velocities of the
+/// awake dynamic bodies. Kinematic bodies keep their velocities; sleeping and static bodies are
+/// not visited.
 void integrateVelocities(BodyStore& bodies, const StepContext& context);
+/// The same for one dynamic body (one woken in the middle of a step catches up on its forces).
+void integrateVelocity(BodyStore& bodies, std::uint32_t index, const StepContext& context);
 
-/// Moves every non-static body with its velocity. Orientation: q(n+1) = exp(h w / 2) q(n), the
+/// Moves every awake body with its velocity. Orientation: q(n+1) = exp(h w / 2) q(n), the
 /// exact rotation for a constant angular velocity over the step, then renormalised against
 /// rounding.
-/// `pseudo` (one per body, or empty) holds split-impulse velocities that move the positions in
-/// this step only and are never stored.
+/// `pseudo` (one per awake body in BodyStore::awake order, or empty) holds split-impulse
+/// velocities that move the positions in this step only and are never stored.
 void integratePositions(BodyStore& bodies, std::span<const PseudoVelocity> pseudo,
                         const StepContext& context);
 

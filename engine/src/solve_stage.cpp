@@ -23,17 +23,29 @@ Vec3 velocityChangeAt(const BodyStore& bodies, std::uint32_t index, const Vec3& 
            (now.angularVelocity - start.angularVelocity).cross(r);
 }
 
+// Solver body 0 is every static body; awake body k is solver body 1 + k.
+std::uint32_t solverIndex(const BodyStore& bodies, std::uint32_t index) {
+    return bodies.info[index].type == BodyType::Static ? 0 : 1 + bodies.info[index].awakeIndex;
+}
+
 }  // namespace
 
-SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes,
-                            std::span<Contact> contacts, const StepContext& context,
-                            const SolverSettings& settings) {
-    const std::uint32_t count = bodies.count();
-    solverBodies_.resize(count);
-    for (std::uint32_t i = 0; i < count; ++i) {
+std::span<const PseudoVelocity> SolveStage::pseudoVelocities() const {
+    if (pseudo_.size() != solverBodies_.size())
+        return {};
+    return std::span<const PseudoVelocity>(pseudo_).subspan(1);
+}
+
+SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, ContactManager& contacts,
+                            const StepContext& context, const SolverSettings& settings) {
+    const std::size_t awakeCount = bodies.awake.size();
+    solverBodies_.resize(1 + awakeCount);
+    solverBodies_[0] = SolverBody{};
+    for (std::size_t k = 0; k < awakeCount; ++k) {
+        const std::uint32_t i = bodies.awake[k];
         const BodyMotion& m = bodies.motion[i];
         const BodyInertia& inertia = bodies.inertia[i];
-        SolverBody& s = solverBodies_[i];
+        SolverBody& s = solverBodies_[1 + k];
         s.linearVelocity = m.linearVelocity;
         s.angularVelocity = m.angularVelocity;
         s.inverseMass = inertia.inverseMass;
@@ -43,15 +55,21 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes,
 
     constraints_.clear();
     constraintContact_.clear();
-    for (std::uint32_t k = 0; k < contacts.size(); ++k) {
-        const Contact& contact = contacts[k];
-        if (contact.manifold.pointCount == 0)
+    for (const std::uint32_t slot : contacts.activeSlots()) {
+        const Contact& contact = contacts.contact(slot);
+        if (!contacts.isActive(slot) || contact.manifold.pointCount == 0)
+            continue;
+        const std::uint32_t indexA = bodies.indexOf(contact.bodyA);
+        const std::uint32_t indexB = bodies.indexOf(contact.bodyB);
+        // A sleeping body resting on a kinematic body at rest: the pair stays collided (the
+        // kinematic body may move) but the sleeper is not solved.
+        if (bodies.isSleeping(indexA) || bodies.isSleeping(indexB))
             continue;
         const Material& materialA = shapes.records[contact.shapeA.index].def.material;
         const Material& materialB = shapes.records[contact.shapeB.index].def.material;
         ContactConstraint c;
-        c.bodyA = bodies.indexOf(contact.bodyA);
-        c.bodyB = bodies.indexOf(contact.bodyB);
+        c.bodyA = solverIndex(bodies, indexA);
+        c.bodyB = solverIndex(bodies, indexB);
         c.normal = contact.manifold.normal;
         c.friction = mixFriction(materialA.friction, materialB.friction);
         c.restitution = mixRestitution(materialA.restitution, materialB.restitution);
@@ -59,22 +77,22 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes,
         for (int i = 0; i < c.pointCount; ++i) {
             const ContactPoint& point = contact.manifold.points[i];
             ContactConstraintPoint& p = c.points[i];
-            p.rA = point.position - bodies.motion[c.bodyA].center;
-            p.rB = point.position - bodies.motion[c.bodyB].center;
+            p.rA = point.position - bodies.motion[indexA].center;
+            p.rB = point.position - bodies.motion[indexB].center;
             p.separation = point.separation;
             p.normalImpulse = contact.normalImpulse[i];
-            p.normalAcceleration = c.normal.dot(velocityChangeAt(bodies, c.bodyB, p.rB) -
-                                                velocityChangeAt(bodies, c.bodyA, p.rA)) *
+            p.normalAcceleration = c.normal.dot(velocityChangeAt(bodies, indexB, p.rB) -
+                                                velocityChangeAt(bodies, indexA, p.rA)) *
                                    context.inverseH;
         }
         constraints_.push_back(c);
-        constraintContact_.push_back(k);
+        constraintContact_.push_back(slot);
     }
     // The solver builds its tangent basis from the normal; cached friction is kept in world
     // coordinates so a turning basis does not scramble it.
     for (std::size_t j = 0; j < constraints_.size(); ++j) {
         ContactConstraint& c = constraints_[j];
-        const Contact& contact = contacts[constraintContact_[j]];
+        const Contact& contact = contacts.contact(constraintContact_[j]);
         c.tangents = frictionBasis(c.normal);
         for (int i = 0; i < c.pointCount; ++i) {
             c.points[i].tangentImpulse = {contact.tangentImpulse[i].dot(c.tangents[0]),
@@ -87,18 +105,19 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes,
 
     for (std::size_t j = 0; j < constraints_.size(); ++j) {
         const ContactConstraint& c = constraints_[j];
-        Contact& contact = contacts[constraintContact_[j]];
+        Contact& contact = contacts.contact(constraintContact_[j]);
         for (int i = 0; i < c.pointCount; ++i) {
             contact.normalImpulse[i] = c.points[i].normalImpulse;
             contact.tangentImpulse[i] = c.points[i].tangentImpulse[0] * c.tangents[0] +
                                         c.points[i].tangentImpulse[1] * c.tangents[1];
         }
     }
-    for (std::uint32_t i = 0; i < count; ++i) {
+    for (std::size_t k = 0; k < awakeCount; ++k) {
+        const std::uint32_t i = bodies.awake[k];
         if (bodies.info[i].type != BodyType::Dynamic)
             continue;
-        bodies.motion[i].linearVelocity = solverBodies_[i].linearVelocity;
-        bodies.motion[i].angularVelocity = solverBodies_[i].angularVelocity;
+        bodies.motion[i].linearVelocity = solverBodies_[1 + k].linearVelocity;
+        bodies.motion[i].angularVelocity = solverBodies_[1 + k].angularVelocity;
     }
     return stats;
 }

@@ -1,11 +1,17 @@
 #pragma once
 /// The solve stage: contacts -> solver rows -> constrained velocities and split-impulse
 /// pseudo-velocities, with impulses written back to the contact cache for warm starting.
+///
+/// Only awake bodies enter the solver: solver body 0 stands for every static body (at rest,
+/// infinite mass, so no impulse changes it) and solver body 1 + k for BodyStore::awake[k]. The
+/// islands are not solved one by one: they share no body, so one Gauss-Seidel pass over all
+/// active contacts gives each island exactly the result it would get alone.
 
 #include <span>
 #include <vector>
 
 #include "body_store.h"
+#include "contact_manager.h"
 #include "shape_store.h"
 #include "step_context.h"
 #include "tumble/contact.h"
@@ -15,18 +21,20 @@ namespace tumble {
 
 class SolveStage {
 public:
-    /// Solves every contact with points; body velocities in `bodies` are updated, and
-    /// pseudoVelocities() holds the split-impulse velocities for integratePositions.
-    SolverStats run(BodyStore& bodies, const ShapeStore& shapes, std::span<Contact> contacts,
+    /// Solves every active contact with points between awake (or static) bodies; velocities of
+    /// the awake dynamic bodies are updated, and pseudoVelocities() holds the split-impulse
+    /// velocities for integratePositions.
+    SolverStats run(BodyStore& bodies, const ShapeStore& shapes, ContactManager& contacts,
                     const StepContext& context, const SolverSettings& settings);
 
-    std::span<const PseudoVelocity> pseudoVelocities() const { return pseudo_; }
+    /// One per awake body, in BodyStore::awake order (empty if the solver gave none).
+    std::span<const PseudoVelocity> pseudoVelocities() const;
 
 private:
     ContactSolver solver_;
     std::vector<SolverBody> solverBodies_;
     std::vector<ContactConstraint> constraints_;
-    std::vector<std::uint32_t> constraintContact_;  ///< contact index of each constraint
+    std::vector<std::uint32_t> constraintContact_;  ///< contact slot of each constraint
     std::vector<PseudoVelocity> pseudo_;
 };
 

@@ -44,10 +44,11 @@ BodyId World::createBody(const BodyDef& def) {
 
 void World::destroyBody(BodyId id) {
     const std::uint32_t index = impl_->bodies.indexOf(id);
+    impl_->wakeChanged(index);  // what rested on it, or what it rested on, must fall
     std::uint32_t slot = impl_->bodies.info[index].firstShape;
     while (slot != BodyInfo::kNoShape) {
         const std::uint32_t next = impl_->shapes.records[slot].nextInBody;
-        impl_->contacts.removeShape(impl_->shapes, slot);
+        impl_->contacts.removeShape(impl_->shapes, slot, impl_->bodies);
         impl_->shapes.remove(impl_->shapes.idAt(slot));
         slot = next;
     }
@@ -143,6 +144,12 @@ void World::setTransform(BodyId id, const Vec3& position, const Quat& orientatio
     // A teleport: nothing to interpolate across.
     impl_->bodies.previousMotion[index] = m;
     impl_->refreshShapesOf(index);
+    impl_->wakeChanged(index, true);
+    if (impl_->bodies.info[index].type != BodyType::Dynamic) {
+        for (std::uint32_t slot = impl_->bodies.info[index].firstShape; slot != BodyInfo::kNoShape;
+             slot = impl_->shapes.records[slot].nextInBody)
+            impl_->contacts.markPlaced(impl_->shapes.records[slot].proxy);
+    }
 }
 
 void World::setLinearVelocity(BodyId id, const Vec3& velocity) {
@@ -150,6 +157,7 @@ void World::setLinearVelocity(BodyId id, const Vec3& velocity) {
     checks::finiteVector(velocity, "setLinearVelocity velocity");
     if (impl_->bodies.info[index].type == BodyType::Static)
         fail("setLinearVelocity: the body is static");
+    impl_->islands.push(impl_->bodies, impl_->contacts, index);
     impl_->bodies.motion[index].linearVelocity = velocity;
 }
 
@@ -158,6 +166,7 @@ void World::setAngularVelocity(BodyId id, const Vec3& velocity) {
     checks::finiteVector(velocity, "setAngularVelocity velocity");
     if (impl_->bodies.info[index].type == BodyType::Static)
         fail("setAngularVelocity: the body is static");
+    impl_->islands.push(impl_->bodies, impl_->contacts, index);
     impl_->bodies.motion[index].angularVelocity = velocity;
 }
 
@@ -168,6 +177,30 @@ void World::setMassProperties(BodyId id, const MassProperties& mass) {
     }
     impl_->bodies.setMass(index, mass);
     impl_->bodies.info[index].massFromShapes = false;
+    impl_->islands.push(impl_->bodies, impl_->contacts, index);
+}
+
+bool World::isAwake(BodyId id) const {
+    return impl_->bodies.isAwake(impl_->bodies.indexOf(id));
+}
+
+void World::setAwake(BodyId id, bool awake) {
+    Impl& w = *impl_;
+    const std::uint32_t index = w.bodies.indexOf(id);
+    const BodyType type = w.bodies.info[index].type;
+    if (awake) {
+        if (type == BodyType::Dynamic)
+            w.islands.wake(w.bodies, w.contacts, index);
+        return;
+    }
+    if (type == BodyType::Kinematic)
+        fail("setAwake(false): the body is kinematic, and kinematic bodies never sleep");
+    if (type == BodyType::Dynamic)
+        w.islands.sleepIslandOf(w.bodies, w.contacts, index);
+}
+
+int World::awakeBodyCount() const {
+    return static_cast<int>(impl_->bodies.awake.size());
 }
 
 void World::applyForce(BodyId id, const Vec3& force, const Vec3& worldPoint) {
@@ -197,6 +230,7 @@ void World::applyLinearImpulse(BodyId id, const Vec3& impulse, const Vec3& world
     const std::uint32_t index = impl_->bodies.indexOf(id);
     if (impl_->bodies.info[index].type != BodyType::Dynamic)
         return;
+    impl_->islands.push(impl_->bodies, impl_->contacts, index);
     BodyMotion& m = impl_->bodies.motion[index];
     m.linearVelocity += impl_->bodies.inertia[index].inverseMass * impulse;
     applyAngularImpulse(id, (worldPoint - m.center).cross(impulse));
@@ -207,6 +241,7 @@ void World::applyAngularImpulse(BodyId id, const Vec3& impulse) {
     const std::uint32_t index = impl_->bodies.indexOf(id);
     if (impl_->bodies.info[index].type != BodyType::Dynamic)
         return;
+    impl_->islands.push(impl_->bodies, impl_->contacts, index);
     BodyMotion& m = impl_->bodies.motion[index];
     const Mat3 rotation = m.orientation.toRotationMatrix();
     m.angularVelocity += rotation * (impl_->bodies.inertia[index].inverseInertiaLocal *
@@ -217,19 +252,23 @@ StepStatus World::step() {
     Impl& w = *impl_;
     const Clock::time_point start = Clock::now();
     const StepContext context = w.context();
-    w.bodies.previousMotion = w.bodies.motion;  // same size: copies without allocating
+    w.bodies.savePreviousMotion();  // awake bodies: the others do not move
 
     w.profile.forces = timed([&] { integrateVelocities(w.bodies, context); });
     w.profile.broadphase = timed([&] { w.contacts.updatePairs(); });
     w.profile.narrowphase = timed([&] { w.contacts.updateContacts(w.shapes, w.bodies, context); });
+    w.profile.islands = timed([&] { w.islands.wakeTouched(w.bodies, w.contacts, context); });
     w.profile.solve = timed([&] {
-        w.solverStats = w.solve.run(w.bodies, w.shapes, w.contacts.mutableContacts(), context,
-                                    w.settings.solver);
+        w.solverStats = w.solve.run(w.bodies, w.shapes, w.contacts, context, w.settings.solver);
     });
     w.profile.integrate =
         timed([&] { integratePositions(w.bodies, w.solve.pseudoVelocities(), context); });
     StepStatus status;
     w.profile.finalize = timed([&] { status = w.finalize(); });
+    w.profile.sleep = timed([&] {
+        if (status.ok())
+            w.islands.updateSleep(w.bodies, w.contacts, context, w.settings);
+    });
 
     w.profile.total = std::chrono::duration<double>(Clock::now() - start).count();
     return status;
@@ -267,7 +306,13 @@ const WorldDef& World::settings() const {
 
 void World::setGravity(const Vec3& gravity) {
     checks::finiteVector(gravity, "setGravity gravity");
-    impl_->settings.gravity = gravity;
+    Impl& w = *impl_;
+    if (gravity == w.settings.gravity)
+        return;
+    w.settings.gravity = gravity;
+    // A resting pile rests under the gravity it settled in: every sleeper must feel the change.
+    for (std::uint32_t i = 0; i < w.bodies.count(); ++i)
+        w.islands.wake(w.bodies, w.contacts, i);
 }
 
 void World::setTimeStep(Real timeStep) {

@@ -6,6 +6,7 @@
 
 #include "body_store.h"
 #include "contact_manager.h"
+#include "island.h"
 #include "shape_store.h"
 #include "solve_stage.h"
 #include "step_context.h"
@@ -27,6 +28,7 @@ struct World::Impl {
     Profile profile;
     ShapeStore shapes;
     ContactManager contacts;
+    Islands islands;
     SolveStage solve;
     SolverStats solverStats;
 
@@ -41,10 +43,21 @@ struct World::Impl {
         return m.center - m.orientation * bodies.inertia[index].localCenter;
     }
 
-    // Dynamic bodies only; forces on static and kinematic bodies are ignored by design.
+    // Dynamic bodies only; forces on static and kinematic bodies are ignored by design. A
+    // pushed body wakes.
     BodyForces* forcesOf(BodyId id) {
         const std::uint32_t index = bodies.indexOf(id);
-        return bodies.info[index].type == BodyType::Dynamic ? &bodies.forces[index] : nullptr;
+        if (bodies.info[index].type != BodyType::Dynamic)
+            return nullptr;
+        islands.push(bodies, contacts, index);
+        return &bodies.forces[index];
+    }
+
+    // The body was changed through the API: wake its island; a moved or reshaped static or
+    // kinematic body also wakes what it has contacts with (see Islands::wakeAround).
+    void wakeChanged(std::uint32_t index, bool moved = false) {
+        const bool touchingOnly = !moved || bodies.info[index].type == BodyType::Dynamic;
+        islands.wakeAround(bodies, contacts, index, touchingOnly);
     }
 
     // After a teleport: the body's shapes take their new bounds at once (queries see them).
@@ -56,16 +69,16 @@ struct World::Impl {
     }
 
     // Checks the new state; on a non-finite body restores the state from before the step.
+    // Sleeping and static bodies did not move: only the awake ones are visited.
     StepStatus finalize() {
-        const std::uint32_t count = bodies.count();
-        for (std::uint32_t i = 0; i < count; ++i) {
+        for (const std::uint32_t i : bodies.awake) {
             if (!isFinite(bodies.motion[i])) {
-                bodies.motion = bodies.previousMotion;
+                bodies.restorePreviousMotion();
                 return {StepStatus::Code::NonFiniteState, bodies.idAt(i)};
             }
         }
-        for (BodyForces& f : bodies.forces)
-            f = {};
+        for (const std::uint32_t i : bodies.awake)
+            bodies.forces[i] = {};
         contacts.refreshBounds(shapes, bodies, context());
         time += settings.timeStep;
         stepCount += 1;

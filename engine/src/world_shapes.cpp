@@ -49,13 +49,19 @@ ShapeId World::createShape(BodyId body, const ShapeDef& def) {
         w.bodies.setMass(bodyIndex, mass);
         info.massFromShapes = true;
     }
+    // A body built asleep stays asleep as its shapes are added; any other one wakes. A new
+    // static shape wakes nothing: a scene is built ground first, then a pile created asleep.
+    if (info.type == BodyType::Dynamic && !info.builtAsleep)
+        w.islands.push(w.bodies, w.contacts, bodyIndex);
     return id;
 }
 
 void World::destroyShape(ShapeId id) {
     Impl& w = *impl_;
     const std::uint32_t slot = w.shapes.slotOf(id);
-    BodyInfo& info = w.bodies.info[w.bodies.indexOf(w.shapes.records[slot].body)];
+    const std::uint32_t bodyIndex = w.bodies.indexOf(w.shapes.records[slot].body);
+    w.wakeChanged(bodyIndex);
+    BodyInfo& info = w.bodies.info[bodyIndex];
     // Unlink from the body's list.
     if (info.firstShape == slot) {
         info.firstShape = w.shapes.records[slot].nextInBody;
@@ -65,7 +71,7 @@ void World::destroyShape(ShapeId id) {
             previous = w.shapes.records[previous].nextInBody;
         w.shapes.records[previous].nextInBody = w.shapes.records[slot].nextInBody;
     }
-    w.contacts.removeShape(w.shapes, slot);
+    w.contacts.removeShape(w.shapes, slot, w.bodies);
     w.shapes.remove(id);
 }
 

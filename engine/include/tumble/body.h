@@ -37,6 +37,12 @@ struct BodyDef {
     Real angularDamping = 0;              ///< (1/s), >= 0; applied implicitly
     Real gravityScale = 1;                ///< multiplies the world's gravity for this body
     std::uint64_t userData = 0;           ///< opaque to the engine, handed back by World::userData
+    /// May the body fall asleep? A body that may not keeps its whole island awake (dynamic
+    /// bodies only; see WorldDef::enableSleep).
+    bool allowSleep = true;
+    /// Created awake (true) or asleep (false). A body created asleep is at rest until something
+    /// touches or pushes it, so it must be dynamic, have zero velocities and allowSleep = true.
+    bool awake = true;
 };
 
 }  // namespace tumble

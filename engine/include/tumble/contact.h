@@ -21,8 +21,11 @@ struct Contact {
     /// Accumulated normal impulse of each manifold point from the last solve (N s); carried to
     /// the next step by feature id for warm starting.
     std::array<Real, Manifold::kMaxPoints> normalImpulse{};
-    /// Accumulated friction impulse of each point (N s), world frame.
-    std::array<Vec3, Manifold::kMaxPoints> tangentImpulse{};
+    /// Accumulated friction impulse of each point (N s), world frame. (Spelled out: an Eigen
+    /// vector's default constructor leaves it uninitialised.)
+    std::array<Vec3, Manifold::kMaxPoints> tangentImpulse{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(),
+                                                          Vec3::Zero()};
+    static_assert(Manifold::kMaxPoints == 4, "tangentImpulse lists one zero per point");
 };
 
 }  // namespace tumble

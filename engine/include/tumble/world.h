@@ -7,6 +7,9 @@
 /// - Velocities are world-frame: linear of the centre of mass, angular about it.
 /// - The manifold normal (collision) points from body A to body B.
 /// - Forces and torques applied between steps act during the next step and are then cleared.
+/// - Changing a body through the API (pose, velocity, mass, a force, torque or impulse, adding or
+///   removing a shape) wakes its island; moving or destroying a static or kinematic body, or
+///   removing one of its shapes, wakes the islands it touches.
 ///
 /// Threading: a World is not thread-safe; distinct worlds share nothing.
 
@@ -39,6 +42,23 @@ struct WorldDef {
     Real aabbMargin = 0.1;
     /// The contact solver: iterations, friction model, stabilisation, restitution threshold.
     SolverSettings solver{};
+
+    /// Sleeping: an island (dynamic bodies joined by touching contacts) whose every body has moved
+    /// slower than both thresholds for timeToSleep falls asleep -- it is no longer integrated,
+    /// solved or collided, and costs nothing per step -- until something touches or pushes it.
+    /// When false, bodies never fall asleep by themselves (World::setAwake still works).
+    bool enableSleep = true;
+    /// Speed of the centre of mass below which a body counts as still (m/s), finite and >= 0.
+    /// 0.05 m/s: one step of free fall at 60 Hz already gives g h = 0.16 m/s, so a falling or
+    /// bouncing body is never still for long, while resting contact leaves far less than this.
+    Real linearSleepVelocity = 0.05;
+    /// Angular speed below which a body counts as still (rad/s), finite and >= 0. 0.05 rad/s moves
+    /// a point 1 m from the centre at the linear threshold, so both agree for metre-sized bodies.
+    Real angularSleepVelocity = 0.05;
+    /// How long every body of an island must stay still before it falls asleep (s), finite and
+    /// > 0. Long against the turning point of a bounce or a swing (a ball rising at 1 m/s is
+    /// below 0.05 m/s for 10 ms), short enough that a settled pile stops costing time quickly.
+    Real timeToSleep = 0.5;
 };
 
 /// Wall-clock time spent in each stage of the last step (s).
@@ -46,9 +66,11 @@ struct Profile {
     double forces = 0;       ///< external forces, gravity, gyroscopic term, damping -> velocities
     double broadphase = 0;   ///< bounds and pair set
     double narrowphase = 0;  ///< manifolds and the contact cache
+    double islands = 0;      ///< waking the sleeping islands that awake bodies began to touch
     double solve = 0;        ///< contact rows, PGS, restitution, split impulse
     double integrate = 0;    ///< velocities -> positions and orientations
-    double finalize = 0;     ///< finiteness check, force clearing
+    double finalize = 0;     ///< finiteness check, force clearing, bounds
+    double sleep = 0;        ///< sleep timers, union-find of islands, islands falling asleep
     double total = 0;
 };
 
@@ -121,6 +143,17 @@ public:
     void setAngularVelocity(BodyId id, const Vec3& velocity);
     void setMassProperties(BodyId id, const MassProperties& mass);
 
+    // --- sleeping (see WorldDef::enableSleep) -------------------------------------------------
+    /// Is the body simulated? Kinematic bodies are always awake, static bodies never.
+    bool isAwake(BodyId id) const;
+    /// Wakes the body's island (true), or puts it to sleep now (false): the body and every
+    /// dynamic body joined to it by touching contacts stop, whatever their timers and allowSleep
+    /// say, and wake again by the usual rules. Waking a static body does nothing; a kinematic
+    /// body cannot sleep (refused).
+    void setAwake(BodyId id, bool awake);
+    /// Awake dynamic and kinematic bodies: those a step integrates.
+    int awakeBodyCount() const;
+
     // --- shapes and contacts -----------------------------------------------------------------
     /// Attaches a shape to a body. Refuses a bad geometry (see checkShape), a bad material
     /// (friction < 0, restitution outside [0, 1], density <= 0), a non-finite or non-unit local
@@ -136,7 +169,9 @@ public:
     Transform shapeTransform(ShapeId id) const;
     /// Tight bounding box at the shape's current pose (m).
     Aabb shapeBounds(ShapeId id) const;
-    /// The contacts found by the last step, in a deterministic order; valid until the next step.
+    /// The contacts found by the last step, in a deterministic order; valid until the next step
+    /// or the next change to bodies or shapes. Contacts of sleeping islands are listed as they
+    /// were when the island fell asleep.
     std::span<const Contact> contacts() const;
 
     // --- queries (through the broadphase; see query.h) ----------------------------------------

@@ -1,0 +1,198 @@
+#include "island.h"
+
+#include <algorithm>
+#include <limits>
+#include <numeric>
+
+#include "integrator.h"
+
+namespace tumble {
+namespace {
+
+bool isTouching(const Contact& contact) {
+    return contact.manifold.pointCount > 0;
+}
+
+}  // namespace
+
+void Islands::wake(BodyStore& bodies, ContactManager& contacts, std::uint32_t index,
+                   const StepContext* midStep) {
+    bodies.info[index].sleepTime = 0;
+    if (!bodies.isSleeping(index))
+        return;
+    stack_.clear();
+    stack_.push_back(index);
+    bodies.markAwake(index);
+    while (!stack_.empty()) {
+        const std::uint32_t body = stack_.back();
+        stack_.pop_back();
+        bodies.info[body].sleepTime = 0;
+        if (midStep != nullptr)
+            integrateVelocity(bodies, body, *midStep);
+        contacts.forEachContact(
+            bodies, body, [&](std::uint32_t slot, const Contact& contact, std::uint32_t other) {
+                contacts.activate(slot);
+                if (isTouching(contact) && bodies.isSleeping(other)) {
+                    bodies.markAwake(other);
+                    stack_.push_back(other);
+                }
+            });
+        // Joints, when they exist, join islands too: walk the body's joints here the same way.
+    }
+}
+
+void Islands::push(BodyStore& bodies, ContactManager& contacts, std::uint32_t index) {
+    if (bodies.info[index].type != BodyType::Dynamic)
+        return;
+    bodies.info[index].pushed = true;
+    wake(bodies, contacts, index);
+}
+
+void Islands::wakeAround(BodyStore& bodies, ContactManager& contacts, std::uint32_t index,
+                         bool touchingOnly) {
+    push(bodies, contacts, index);
+    // Collect first: waking activates contacts, which the walk must not see half-done.
+    sleepers_.clear();
+    contacts.forEachContact(
+        bodies, index, [&](std::uint32_t, const Contact& contact, std::uint32_t other) {
+            if ((!touchingOnly || isTouching(contact)) && bodies.isSleeping(other))
+                sleepers_.push_back(other);
+        });
+    for (const std::uint32_t other : sleepers_)
+        wake(bodies, contacts, other);
+}
+
+void Islands::sleepIslandOf(BodyStore& bodies, ContactManager& contacts, std::uint32_t index) {
+    if (!bodies.isAwakeDynamic(index))
+        return;
+    visited_.assign(bodies.awake.size(), 0);
+    sleepers_.clear();
+    stack_.clear();
+    stack_.push_back(index);
+    visited_[bodies.info[index].awakeIndex] = 1;
+    while (!stack_.empty()) {
+        const std::uint32_t body = stack_.back();
+        stack_.pop_back();
+        sleepers_.push_back(body);
+        contacts.forEachContact(bodies, body,
+                                [&](std::uint32_t, const Contact& contact, std::uint32_t other) {
+                                    if (!isTouching(contact) || !bodies.isAwakeDynamic(other) ||
+                                        visited_[bodies.info[other].awakeIndex] != 0)
+                                        return;
+                                    visited_[bodies.info[other].awakeIndex] = 1;
+                                    stack_.push_back(other);
+                                });
+    }
+    putToSleep(bodies, contacts, sleepers_);
+}
+
+void Islands::wakeTouched(BodyStore& bodies, ContactManager& contacts, const StepContext& context) {
+    for (const std::uint32_t index : contacts.wakeRequests())
+        wake(bodies, contacts, index, &context);
+    contacts.clearWakeRequests();
+    contacts.flushActivations();
+}
+
+void Islands::updateSleep(BodyStore& bodies, ContactManager& contacts, const StepContext& context,
+                          const WorldDef& settings) {
+    if (!settings.enableSleep)
+        return;
+    const Real linear2 = settings.linearSleepVelocity * settings.linearSleepVelocity;
+    const Real angular2 = settings.angularSleepVelocity * settings.angularSleepVelocity;
+    bool anySleepy = false;
+    for (const std::uint32_t index : bodies.awake) {
+        BodyInfo& info = bodies.info[index];
+        if (info.type != BodyType::Dynamic)
+            continue;
+        const BodyMotion& m = bodies.motion[index];
+        if (info.pushed || !info.allowSleep || m.linearVelocity.squaredNorm() > linear2 ||
+            m.angularVelocity.squaredNorm() > angular2) {
+            info.sleepTime = 0;
+            info.pushed = false;
+        } else {
+            info.sleepTime += context.h;
+            anySleepy = anySleepy || info.sleepTime >= settings.timeToSleep;
+        }
+    }
+    if (!anySleepy)
+        return;  // the common case while things move: no union-find at all
+
+    const std::uint32_t count = static_cast<std::uint32_t>(bodies.awake.size());
+    parent_.resize(count);
+    std::iota(parent_.begin(), parent_.end(), 0u);
+    for (const std::uint32_t slot : contacts.activeSlots()) {
+        const Contact& contact = contacts.contact(slot);
+        if (!contacts.isActive(slot) || !isTouching(contact))
+            continue;
+        const std::uint32_t a = bodies.indexOf(contact.bodyA);
+        const std::uint32_t b = bodies.indexOf(contact.bodyB);
+        const bool dynamicA = bodies.isAwakeDynamic(a);
+        const bool dynamicB = bodies.isAwakeDynamic(b);
+        if (dynamicA && dynamicB) {
+            unite(bodies.info[a].awakeIndex, bodies.info[b].awakeIndex);
+        } else if (dynamicA && bodies.isMovingKinematic(b)) {
+            bodies.info[a].sleepTime = 0;  // carried or pushed: not at rest
+        } else if (dynamicB && bodies.isMovingKinematic(a)) {
+            bodies.info[b].sleepTime = 0;
+        }
+    }
+    // Joints, when they exist, unite their two bodies here exactly as touching contacts do.
+
+    islandSleepTime_.assign(count, std::numeric_limits<Real>::infinity());
+    for (std::uint32_t k = 0; k < count; ++k) {
+        const BodyInfo& info = bodies.info[bodies.awake[k]];
+        if (info.type == BodyType::Dynamic) {
+            Real& islandTime = islandSleepTime_[find(k)];
+            islandTime = std::min(islandTime, info.sleepTime);
+        }
+    }
+    sleepers_.clear();
+    for (std::uint32_t k = 0; k < count; ++k) {
+        const std::uint32_t index = bodies.awake[k];
+        if (bodies.info[index].type == BodyType::Dynamic &&
+            islandSleepTime_[find(k)] >= settings.timeToSleep)
+            sleepers_.push_back(index);
+    }
+    putToSleep(bodies, contacts, sleepers_);
+}
+
+void Islands::putToSleep(BodyStore& bodies, ContactManager& contacts,
+                         std::span<const std::uint32_t> indices) {
+    for (const std::uint32_t index : indices) {
+        bodies.markNotAwake(index);
+        BodyMotion& m = bodies.motion[index];
+        m.linearVelocity.setZero();
+        m.angularVelocity.setZero();
+        bodies.previousMotion[index] = m;  // interpolation shows the resting pose
+        bodies.forces[index] = {};
+    }
+    // Park the contacts with nothing awake on the other side; a contact with an awake body
+    // (not touching, or it would be in the island) stays active so that body still collides.
+    for (const std::uint32_t index : indices) {
+        contacts.forEachContact(bodies, index,
+                                [&](std::uint32_t slot, const Contact&, std::uint32_t other) {
+                                    if (!bodies.isAwake(other))
+                                        contacts.deactivate(slot);
+                                });
+    }
+}
+
+std::uint32_t Islands::find(std::uint32_t position) {
+    while (parent_[position] != position) {
+        parent_[position] = parent_[parent_[position]];
+        position = parent_[position];
+    }
+    return position;
+}
+
+void Islands::unite(std::uint32_t a, std::uint32_t b) {
+    const std::uint32_t rootA = find(a);
+    const std::uint32_t rootB = find(b);
+    // The smaller position becomes the root: the sets never depend on the order of unions.
+    if (rootA < rootB)
+        parent_[rootB] = rootA;
+    else if (rootB < rootA)
+        parent_[rootA] = rootB;
+}
+
+}  // namespace tumble

@@ -1,0 +1,74 @@
+#pragma once
+/// Islands and sleeping.
+///
+/// An island is a set of dynamic bodies joined by touching contacts (manifold.pointCount > 0)
+/// and, later, joints. Static and kinematic bodies join no island: a pile on the ground is one
+/// island per group of touching bodies, not one for everything on the ground.
+///
+/// Falling asleep (the sleep stage, after the step's motion): each awake dynamic body's timer
+/// grows by h while it is still (speed below WorldDef::linearSleepVelocity and angular speed
+/// below angularSleepVelocity) and resets otherwise, or when it may not sleep, or when it touches
+/// a moving kinematic body. Only when some timer has reached timeToSleep is a union-find run over
+/// the awake bodies and touching active contacts; an island sleeps when its smallest timer has.
+/// Sleeping bodies lose their velocities, leave BodyStore::awake, and their contacts with
+/// nothing awake on the other side are parked (ContactManager), so no per-step loop visits them.
+///
+/// Waking: the island of a sleeping body is not stored; it is found again by walking parked
+/// touching contacts from the body, which is what joined it when it fell asleep. A whole island
+/// wakes at once, with all its contacts active again.
+///
+/// Determinism: union-find roots are the smallest awake-list position of each set, islands fall
+/// asleep in awake-list order and walks follow the body contact lists, all of which depend only
+/// on the scene's history.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "body_store.h"
+#include "contact_manager.h"
+#include "step_context.h"
+#include "tumble/world.h"
+
+namespace tumble {
+
+class Islands {
+public:
+    /// Wakes the island of a sleeping dynamic body, and resets the body's sleep timer whether it
+    /// slept or not (a pushed body starts being still again). `midStep` is given when the stage
+    /// that integrates forces has already run: the woken bodies catch up on it.
+    void wake(BodyStore& bodies, ContactManager& contacts, std::uint32_t index,
+              const StepContext* midStep = nullptr);
+    /// The body was changed through the API: wake(index), and its next step does not count as
+    /// still.
+    void push(BodyStore& bodies, ContactManager& contacts, std::uint32_t index);
+    /// push(index), then wake every sleeping body the body has a contact with: only those it
+    /// touches, or all of them (for a static or kinematic body that was moved: a non-touching
+    /// parked pair may touch now, and nothing would collide it).
+    void wakeAround(BodyStore& bodies, ContactManager& contacts, std::uint32_t index,
+                    bool touchingOnly);
+    /// Puts the island of an awake dynamic body to sleep now, whatever its timers say.
+    void sleepIslandOf(BodyStore& bodies, ContactManager& contacts, std::uint32_t index);
+
+    /// Islands stage: wakes the islands the narrowphase found touched by awake bodies, so this
+    /// step solves them (their bodies catch up on this step's forces).
+    void wakeTouched(BodyStore& bodies, ContactManager& contacts, const StepContext& context);
+    /// Sleep stage: timers, and the islands still for timeToSleep fall asleep.
+    void updateSleep(BodyStore& bodies, ContactManager& contacts, const StepContext& context,
+                     const WorldDef& settings);
+
+private:
+    void putToSleep(BodyStore& bodies, ContactManager& contacts,
+                    std::span<const std::uint32_t> indices);
+    /// Union-find over awake-list positions: the set's root, halving the path on the way.
+    std::uint32_t find(std::uint32_t position);
+    void unite(std::uint32_t a, std::uint32_t b);
+
+    std::vector<std::uint32_t> parent_;
+    std::vector<Real> islandSleepTime_;  ///< smallest timer of each set, at its root
+    std::vector<std::uint32_t> stack_;
+    std::vector<std::uint8_t> visited_;
+    std::vector<std::uint32_t> sleepers_;
+};
+
+}  // namespace tumble

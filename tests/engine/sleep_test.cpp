@@ -1,0 +1,483 @@
+// Islands and sleeping: when bodies fall asleep, what wakes them, and that sleeping changes
+// nothing it should not.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include "refusal.h"
+#include "tumble/world.h"
+
+namespace tumble {
+namespace {
+
+using test::contains;
+using test::refusal;
+
+BodyId addGround(World& world) {
+    const BodyId ground = world.createBody(BodyDef{.type = BodyType::Static});
+    ShapeDef def{.geometry = HalfSpace{}};
+    def.material.friction = 0.5;
+    world.createShape(ground, def);
+    return ground;
+}
+
+BodyId addBox(World& world, const Vec3& position, BodyDef def = {}) {
+    def.position = position;
+    const BodyId box = world.createBody(def);
+    ShapeDef shape{.geometry = Box{}};  // unit cube, 1 kg at the default density
+    shape.material.friction = 0.5;
+    world.createShape(box, shape);
+    return box;
+}
+
+bool isStill(const World& world, BodyId id) {
+    const WorldDef& s = world.settings();
+    return world.linearVelocity(id).norm() < s.linearSleepVelocity &&
+           world.angularVelocity(id).norm() < s.angularSleepVelocity;
+}
+
+// Steps until the body sleeps; returns the number of steps taken, or -1 after maxSteps.
+int stepUntilAsleep(World& world, BodyId id, int maxSteps) {
+    for (int i = 1; i <= maxSteps; ++i) {
+        EXPECT_TRUE(world.step().ok());
+        if (!world.isAwake(id))
+            return i;
+    }
+    return -1;
+}
+
+// Everything a body reports, as raw doubles, for bitwise comparison.
+std::vector<Real> stateOf(const World& world, BodyId id) {
+    const Quat q = world.orientation(id);
+    const Vec3 p = world.position(id);
+    const Vec3 v = world.linearVelocity(id);
+    const Vec3 w = world.angularVelocity(id);
+    const Transform t = world.interpolatedTransform(id, 0.5);
+    return {p.x(),          p.y(),          p.z(),          q.w(),          q.x(),
+            q.y(),          q.z(),          v.x(),          v.y(),          v.z(),
+            w.x(),          w.y(),          w.z(),          t.position.x(), t.position.y(),
+            t.position.z(), t.rotation.w(), t.rotation.x(), t.rotation.y(), t.rotation.z()};
+}
+
+bool bitwiseEqual(const std::vector<Real>& a, const std::vector<Real>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Real)) == 0;
+}
+
+TEST(Sleep, DroppedBoxFallsAsleepOnlyAfterStayingStillForTimeToSleep) {
+    World world;
+    addGround(world);
+    BodyDef def;
+    def.orientation = Quat(Eigen::AngleAxis<Real>(0.3, Vec3(1, 1, 0).normalized()));
+    const BodyId box = addBox(world, Vec3(0, 0, 1.5), def);
+    const Real h = world.settings().timeStep;
+    // The timer must cover timeToSleep: this many still steps, the last being the one it
+    // falls asleep in (its velocities are zeroed then, so that one is not observed).
+    const int stillSteps = static_cast<int>(std::lround(world.settings().timeToSleep / h));
+
+    int stillRun = 0;
+    int asleepAt = -1;
+    for (int i = 1; i <= 600 && asleepAt < 0; ++i) {
+        ASSERT_TRUE(world.step().ok());
+        if (!world.isAwake(box)) {
+            asleepAt = i;
+            break;
+        }
+        stillRun = isStill(world, box) ? stillRun + 1 : 0;
+    }
+    ASSERT_GT(asleepAt, 0) << "the box never fell asleep";
+    EXPECT_GE(stillRun, stillSteps - 1) << "it fell asleep before it had been still for long";
+    EXPECT_LE(stillRun, stillSteps) << "it stayed awake after being still for timeToSleep";
+    // Asleep at rest on a face, with its velocities zeroed.
+    EXPECT_NEAR(world.position(box).z(), 0.5, world.settings().solver.slop + 1e-3);
+    EXPECT_EQ(world.linearVelocity(box), Vec3::Zero());
+    EXPECT_EQ(world.angularVelocity(box), Vec3::Zero());
+    EXPECT_EQ(world.awakeBodyCount(), 0);
+}
+
+TEST(Sleep, SleepingBoxKeepsItsContactAndCachedImpulses) {
+    World world;
+    addGround(world);
+    const BodyId box = addBox(world, Vec3(0, 0, 0.5));
+    ASSERT_GT(stepUntilAsleep(world, box, 300), 0);
+    ASSERT_EQ(world.contacts().size(), 1u);
+    const Contact& contact = world.contacts()[0];
+    ASSERT_EQ(contact.manifold.pointCount, 4);
+    // At rest the normal impulses of a step carry the weight: sum = m g h (the split between
+    // the four corners is not unique).
+    Real sum = 0;
+    for (int i = 0; i < 4; ++i)
+        sum += contact.normalImpulse[i];
+    const Real weightImpulse = world.massProperties(box).mass * 9.81 * world.settings().timeStep;
+    EXPECT_NEAR(sum, weightImpulse, 0.01 * weightImpulse);
+}
+
+// A box resting on another, dropped with and without sleeping: the highest the lower box gets
+// kicked up by the impact, and where the upper one comes to rest.
+struct DropOnto {
+    Real restZ = 0;         // lower box before the drop (m)
+    Real highestLower = 0;  // (m)
+    Real upperZ = 0;        // (m)
+    bool lowerSleptBeforeTouch = true;
+    bool lowerWoke = false;
+    bool oneState = true;   // once touched, both awake or both asleep
+    int bothAsleepAt = -1;  // step after the drop, -1 if never
+};
+
+DropOnto dropOnto(bool enableSleep) {
+    World world(WorldDef{.enableSleep = enableSleep});
+    addGround(world);
+    const BodyId lower = addBox(world, Vec3(0, 0, 0.5));
+    for (int i = 0; i < 90; ++i)
+        world.step();
+    DropOnto r;
+    r.restZ = world.position(lower).z();
+    r.highestLower = r.restZ;
+    const BodyId upper = addBox(world, Vec3(0.2, -0.1, 2.5));
+    for (int i = 0; i < 600; ++i) {
+        world.step();
+        // Falling 1 m takes 27 steps: for the first 10 it is far from touching.
+        if (i < 10)
+            r.lowerSleptBeforeTouch = r.lowerSleptBeforeTouch && !world.isAwake(lower);
+        r.lowerWoke = r.lowerWoke || (i >= 10 && world.isAwake(lower));
+        if (r.lowerWoke)
+            r.oneState = r.oneState && world.isAwake(lower) == world.isAwake(upper);
+        r.highestLower = std::max(r.highestLower, world.position(lower).z());
+        if (r.bothAsleepAt < 0 && !world.isAwake(lower) && !world.isAwake(upper))
+            r.bothAsleepAt = i;
+    }
+    r.upperZ = world.position(upper).z();
+    return r;
+}
+
+TEST(Sleep, SleepingBoxIsWokenByABoxDroppedOnItAndThePairSleepsAgain) {
+    const DropOnto sleeping = dropOnto(true);
+    EXPECT_TRUE(sleeping.lowerSleptBeforeTouch);
+    EXPECT_TRUE(sleeping.lowerWoke);
+    EXPECT_TRUE(sleeping.oneState) << "they touch: one island, one state";
+    EXPECT_GE(sleeping.bothAsleepAt, 0) << "the pair never fell asleep again";
+    // Waking in the middle of the step it is hit in must not kick the lower box: it moves as it
+    // would had it never slept (its cached impulses meet this step's gravity).
+    const DropOnto awake = dropOnto(false);
+    EXPECT_NEAR(sleeping.highestLower - sleeping.restZ, awake.highestLower - awake.restZ, 1e-4);
+    EXPECT_NEAR(sleeping.upperZ, awake.upperZ, 1e-3);
+    EXPECT_NEAR(sleeping.upperZ, 1.5, 2 * (SolverSettings{}.slop + 1e-3));
+}
+
+// Each way of pushing or changing a body through the API wakes it.
+TEST(Sleep, ApiChangesWakeTheBody) {
+    struct Case {
+        const char* name;
+        void (*change)(World&, BodyId);
+    };
+    const Case cases[] = {
+        {"applyForce",
+         [](World& w, BodyId b) { w.applyForce(b, Vec3(5, 0, 0), w.centerOfMass(b)); }},
+        {"applyForceToCenter", [](World& w, BodyId b) { w.applyForceToCenter(b, Vec3(5, 0, 0)); }},
+        {"applyTorque", [](World& w, BodyId b) { w.applyTorque(b, Vec3(0, 0, 5)); }},
+        {"applyLinearImpulse",
+         [](World& w, BodyId b) { w.applyLinearImpulse(b, Vec3(1, 0, 0), w.centerOfMass(b)); }},
+        {"applyAngularImpulse",
+         [](World& w, BodyId b) { w.applyAngularImpulse(b, Vec3(0, 0, 1)); }},
+        {"setLinearVelocity", [](World& w, BodyId b) { w.setLinearVelocity(b, Vec3(1, 0, 0)); }},
+        {"setAngularVelocity", [](World& w, BodyId b) { w.setAngularVelocity(b, Vec3(0, 0, 1)); }},
+        {"setTransform",
+         [](World& w, BodyId b) { w.setTransform(b, Vec3(0, 0, 2), Quat::Identity()); }},
+        {"setMassProperties",
+         [](World& w, BodyId b) {
+             MassProperties mass;
+             mass.mass = 2;
+             mass.inertia = Mat3::Identity() / 3;
+             w.setMassProperties(b, mass);
+         }},
+        {"createShape",
+         [](World& w, BodyId b) {
+             w.createShape(b, ShapeDef{.geometry = Sphere{0.2},
+                                       .localPose = {Vec3(0, 0, 0.5), Quat::Identity()}});
+         }},
+        {"destroyShape",
+         [](World& w, BodyId b) {
+             const Contact& ground = w.contacts()[0];
+             w.destroyShape(ground.bodyA == b ? ground.shapeA : ground.shapeB);
+         }},
+        {"setAwake", [](World& w, BodyId b) { w.setAwake(b, true); }},
+    };
+    for (const Case& c : cases) {
+        World world;
+        addGround(world);
+        const BodyId box = addBox(world, Vec3(0, 0, 0.5));
+        ASSERT_GT(stepUntilAsleep(world, box, 300), 0) << c.name;
+        c.change(world, box);
+        EXPECT_TRUE(world.isAwake(box)) << c.name;
+        EXPECT_EQ(world.awakeBodyCount(), 1) << c.name;
+    }
+}
+
+// A woken body answers a push as if it had never slept: sliding friction mu m g against twice
+// that, a = mu g, x_n = a h^2 n (n + 1) / 2 under semi-implicit Euler.
+TEST(Sleep, PushedBodyMovesAfterWaking) {
+    World world;
+    addGround(world);
+    const BodyId box = addBox(world, Vec3(0, 0, 0.5));
+    ASSERT_GT(stepUntilAsleep(world, box, 300), 0);
+    const Real x0 = world.position(box).x();
+    const Real mu = 0.5;
+    const Real push = 2 * mu * world.massProperties(box).mass * 9.81;
+    const int steps = 30;
+    for (int i = 0; i < steps; ++i) {
+        world.applyForceToCenter(box, Vec3(push, 0, 0));
+        ASSERT_TRUE(world.step().ok());
+        EXPECT_TRUE(world.isAwake(box));
+    }
+    const Real h = world.settings().timeStep;
+    const Real a = mu * 9.81;
+    // To the solver's convergence (PGS at a fixed budget), 1e-6 relative.
+    const Real v = a * steps * h;
+    const Real x = a * h * h * steps * (steps + 1) / 2;
+    EXPECT_NEAR(world.linearVelocity(box).x(), v, 1e-6 * v);
+    EXPECT_NEAR(world.position(box).x() - x0, x, 1e-6 * x);
+}
+
+TEST(Sleep, BodyThatMayNotSleepKeepsItsIslandAwake) {
+    World world;
+    addGround(world);
+    BodyDef restless;
+    restless.allowSleep = false;
+    const BodyId lower = addBox(world, Vec3(0, 0, 0.5), restless);
+    const BodyId upper = addBox(world, Vec3(0, 0, 1.5));
+    const BodyId apart = addBox(world, Vec3(5, 0, 0.5));
+    for (int i = 0; i < 300; ++i)
+        ASSERT_TRUE(world.step().ok());
+    EXPECT_TRUE(world.isAwake(lower));
+    EXPECT_TRUE(world.isAwake(upper)) << "it rests on a body that may not sleep";
+    EXPECT_FALSE(world.isAwake(apart)) << "a separate island sleeps";
+}
+
+TEST(Sleep, StackOfFiveSleepsAsOneIslandAndWakingTheTopWakesAll) {
+    World world;
+    addGround(world);
+    std::vector<BodyId> stack;
+    for (int i = 0; i < 5; ++i)
+        stack.push_back(addBox(world, Vec3(0, 0, 0.5 + i)));
+    int previous = world.awakeBodyCount();
+    int fellAsleepAt = -1;
+    for (int i = 0; i < 900 && fellAsleepAt < 0; ++i) {
+        ASSERT_TRUE(world.step().ok());
+        const int awake = world.awakeBodyCount();
+        if (awake != previous) {
+            EXPECT_EQ(previous, 5);
+            EXPECT_EQ(awake, 0) << "the stack fell asleep in parts";
+            fellAsleepAt = i;
+        }
+        previous = awake;
+    }
+    ASSERT_GE(fellAsleepAt, 0) << "the stack never fell asleep";
+    EXPECT_NEAR(world.position(stack.back()).z(), 4.5, 5 * (world.settings().solver.slop + 1e-3));
+
+    world.setAwake(stack.back(), true);
+    EXPECT_EQ(world.awakeBodyCount(), 5);
+    for (BodyId id : stack)
+        EXPECT_TRUE(world.isAwake(id));
+    // And put to sleep again as one island from its bottom.
+    world.setAwake(stack.front(), false);
+    EXPECT_EQ(world.awakeBodyCount(), 0);
+}
+
+TEST(Sleep, SleepingBodyDoesNotChangeBitwise) {
+    World world;
+    addGround(world);
+    const BodyId box = addBox(world, Vec3(0, 0, 0.5));
+    // Something awake elsewhere, so the steps do run their stages.
+    BodyDef rolling;
+    rolling.allowSleep = false;
+    rolling.position = Vec3(10, 0, 0.3);
+    rolling.linearVelocity = Vec3(0, 1, 0);
+    const BodyId ball = world.createBody(rolling);
+    world.createShape(ball, ShapeDef{.geometry = Sphere{0.3}});
+    ASSERT_GT(stepUntilAsleep(world, box, 300), 0);
+    const std::vector<Real> before = stateOf(world, box);
+    const Vec3 ballBefore = world.position(ball);
+    for (int i = 0; i < 200; ++i) {
+        ASSERT_TRUE(world.step().ok());
+        ASSERT_FALSE(world.isAwake(box));
+    }
+    EXPECT_TRUE(bitwiseEqual(stateOf(world, box), before));
+    EXPECT_GT((world.position(ball) - ballBefore).norm(), 1.0);
+}
+
+TEST(Sleep, DisabledSleepNeverPutsBodiesToSleep) {
+    World world(WorldDef{.enableSleep = false});
+    addGround(world);
+    const BodyId box = addBox(world, Vec3(0, 0, 0.5));
+    for (int i = 0; i < 300; ++i)
+        ASSERT_TRUE(world.step().ok());
+    EXPECT_TRUE(world.isAwake(box));
+    EXPECT_EQ(world.awakeBodyCount(), 1);
+}
+
+TEST(Sleep, BodyCreatedAsleepStaysAsleepUntilTouched) {
+    World world;
+    addGround(world);
+    BodyDef asleep;
+    asleep.awake = false;
+    const BodyId lower = addBox(world, Vec3(0, 0, 0.5), asleep);  // shape added after creation
+    EXPECT_FALSE(world.isAwake(lower));
+    EXPECT_EQ(world.awakeBodyCount(), 0);
+    for (int i = 0; i < 30; ++i)
+        ASSERT_TRUE(world.step().ok());
+    EXPECT_FALSE(world.isAwake(lower));
+    EXPECT_EQ(world.position(lower), Vec3(0, 0, 0.5));
+
+    addBox(world, Vec3(0, 0, 2));
+    bool woke = false;
+    for (int i = 0; i < 60 && !woke; ++i) {
+        ASSERT_TRUE(world.step().ok());
+        woke = world.isAwake(lower);
+    }
+    EXPECT_TRUE(woke);
+}
+
+TEST(Sleep, DestroyingOrMovingTheGroundWakesWhatRestsOnIt) {
+    for (const bool destroy : {true, false}) {
+        World world;
+        const BodyId ground = addGround(world);
+        const BodyId box = addBox(world, Vec3(0, 0, 0.5));
+        ASSERT_GT(stepUntilAsleep(world, box, 300), 0);
+        const Real z0 = world.position(box).z();
+        if (destroy)
+            world.destroyBody(ground);
+        else
+            world.setTransform(ground, Vec3(0, 0, -1), Quat::Identity());
+        EXPECT_TRUE(world.isAwake(box)) << (destroy ? "destroyBody" : "setTransform");
+        for (int i = 0; i < 10; ++i)
+            ASSERT_TRUE(world.step().ok());
+        EXPECT_LT(world.position(box).z(), z0 - 0.05) << "it falls";
+    }
+}
+
+TEST(Sleep, DestroyingABodyWakesWhatRestsOnIt) {
+    World world;
+    addGround(world);
+    const BodyId lower = addBox(world, Vec3(0, 0, 0.5));
+    const BodyId upper = addBox(world, Vec3(0, 0, 1.5));
+    ASSERT_GT(stepUntilAsleep(world, upper, 600), 0);
+    world.destroyBody(lower);
+    EXPECT_TRUE(world.isAwake(upper));
+    for (int i = 0; i < 60; ++i)
+        ASSERT_TRUE(world.step().ok());
+    EXPECT_NEAR(world.position(upper).z(), 0.5, 0.01) << "it fell to the ground";
+}
+
+TEST(Sleep, KinematicBodyWakesAndCarriesOnlyWhileItMoves) {
+    World world;
+    BodyDef platformDef;
+    platformDef.type = BodyType::Kinematic;
+    platformDef.position = Vec3(0, 0, -0.1);
+    const BodyId platform = world.createBody(platformDef);
+    world.createShape(platform, ShapeDef{.geometry = Box{Vec3(2, 2, 0.1)}});
+    const BodyId box = addBox(world, Vec3(0, 0, 0.5));
+    ASSERT_GT(stepUntilAsleep(world, box, 300), 0) << "a kinematic body at rest lets it sleep";
+    EXPECT_TRUE(world.isAwake(platform));
+    EXPECT_EQ(world.awakeBodyCount(), 1);
+
+    // Lifted at 1 cm/s, slower than the sleep threshold: carried, so never asleep.
+    world.setLinearVelocity(platform, Vec3(0, 0, 0.01));
+    const Real z0 = world.position(box).z();
+    for (int i = 0; i < 180; ++i) {
+        ASSERT_TRUE(world.step().ok());
+        ASSERT_TRUE(world.isAwake(box)) << "asleep at step " << i;
+    }
+    EXPECT_NEAR(world.position(box).z() - z0, 0.03, 2e-3);
+    EXPECT_THROW(world.setAwake(platform, false), InvalidArgument);
+}
+
+TEST(Sleep, StaticBodyIsNeverAwake) {
+    World world;
+    const BodyId ground = addGround(world);
+    EXPECT_FALSE(world.isAwake(ground));
+    world.setAwake(ground, true);  // nothing to wake
+    world.setAwake(ground, false);
+    EXPECT_FALSE(world.isAwake(ground));
+    EXPECT_EQ(world.awakeBodyCount(), 0);
+}
+
+// A pile that falls asleep, is partly woken and destroyed from, run twice: bitwise the same.
+TEST(Sleep, SleepingIsDeterministic) {
+    auto run = [] {
+        World world;
+        addGround(world);
+        std::vector<BodyId> ids;
+        for (int i = 0; i < 24; ++i) {
+            BodyDef def;
+            def.orientation = Quat(Eigen::AngleAxis<Real>(0.1 * i, Vec3(1, 2, 3).normalized()));
+            def.position = Vec3((i % 3) * 0.7, ((i / 3) % 2) * 0.7, 0.4 + (i / 6) * 0.9);
+            const BodyId id = world.createBody(def);
+            if (i % 3 == 0) {
+                world.createShape(id, ShapeDef{.geometry = Sphere{0.3}});
+            } else {
+                world.createShape(id, ShapeDef{.geometry = Box{Vec3(0.3, 0.25, 0.2)}});
+            }
+            ids.push_back(id);
+        }
+        int minAwake = world.awakeBodyCount();
+        std::vector<Real> trace;
+        for (int s = 0; s < 900; ++s) {
+            if (s == 500)
+                world.applyLinearImpulse(ids[4], Vec3(2, 0, 1), world.centerOfMass(ids[4]));
+            if (s == 600)
+                world.destroyBody(ids[10]);
+            world.step();
+            minAwake = std::min(minAwake, world.awakeBodyCount());
+            trace.push_back(static_cast<Real>(world.awakeBodyCount()));
+        }
+        for (BodyId id : ids) {
+            if (!world.isValid(id))
+                continue;
+            const std::vector<Real> state = stateOf(world, id);
+            trace.insert(trace.end(), state.begin(), state.end());
+        }
+        EXPECT_LT(minAwake, 24) << "something fell asleep during the run";
+        return trace;
+    };
+    EXPECT_TRUE(bitwiseEqual(run(), run()));
+}
+
+TEST(Sleep, BadSettingsAreRefused) {
+    const Real nan = std::numeric_limits<Real>::quiet_NaN();
+    const Real inf = std::numeric_limits<Real>::infinity();
+    EXPECT_TRUE(contains(refusal([] { World w(WorldDef{.linearSleepVelocity = -0.1}); }),
+                         "WorldDef.linearSleepVelocity"));
+    EXPECT_TRUE(contains(refusal([&] { World w(WorldDef{.linearSleepVelocity = nan}); }),
+                         "WorldDef.linearSleepVelocity"));
+    EXPECT_TRUE(contains(refusal([] { World w(WorldDef{.angularSleepVelocity = -1}); }),
+                         "WorldDef.angularSleepVelocity"));
+    EXPECT_TRUE(contains(refusal([&] { World w(WorldDef{.angularSleepVelocity = inf}); }),
+                         "WorldDef.angularSleepVelocity"));
+    for (const Real bad : {0.0, -1.0, inf, nan}) {
+        EXPECT_TRUE(contains(refusal([&] { World w(WorldDef{.timeToSleep = bad}); }),
+                             "WorldDef.timeToSleep"))
+            << bad;
+    }
+    // Zero thresholds are allowed: only bodies exactly at rest sleep.
+    EXPECT_EQ(refusal([] { World w(WorldDef{.linearSleepVelocity = 0}); }), "");
+
+    World world;
+    EXPECT_TRUE(contains(refusal([&] {
+                             world.createBody(
+                                 BodyDef{.linearVelocity = Vec3(1, 0, 0), .awake = false});
+                         }),
+                         "BodyDef.awake = false"));
+    EXPECT_TRUE(contains(
+        refusal([&] { world.createBody(BodyDef{.type = BodyType::Kinematic, .awake = false}); }),
+        "only a dynamic body"));
+    EXPECT_TRUE(
+        contains(refusal([&] { world.createBody(BodyDef{.allowSleep = false, .awake = false}); }),
+                 "allowSleep"));
+    EXPECT_EQ(world.bodyCount(), 0) << "refused definitions create nothing";
+}
+
+}  // namespace
+}  // namespace tumble
