@@ -54,12 +54,16 @@ ValidationCase pyramidCase();
 ValidationCase massRatioCase();
 ValidationCase tableCase();
 ValidationCase tunnelCase();
+ValidationCase springStabilityCase();
+ValidationCase tautStringCase();
+ValidationCase hangingChainCase();
 
 /// Every case, in the order the runner lists them.
 inline std::vector<ValidationCase> allCases() {
-    return {freeFallCase(),  oscillatorCase(), torqueFreeCase(), bounceCase(),
-            inclineCase(),   slideCase(),      stackCase(),      pyramidCase(),
-            massRatioCase(), tableCase(),      tunnelCase()};
+    return {freeFallCase(),   oscillatorCase(),  torqueFreeCase(), bounceCase(),
+            inclineCase(),    slideCase(),       stackCase(),      pyramidCase(),
+            massRatioCase(),  tableCase(),       tunnelCase(),     springStabilityCase(),
+            tautStringCase(), hangingChainCase()};
 }
 
 /// Least-squares slope of log(y) against log(x): the order of convergence.

@@ -93,8 +93,8 @@ void Islands::wakeTouched(BodyStore& bodies, ContactManager& contacts, const Ste
     contacts.flushActivations();
 }
 
-void Islands::updateSleep(BodyStore& bodies, ContactManager& contacts, const StepContext& context,
-                          const WorldDef& settings) {
+void Islands::updateSleep(BodyStore& bodies, ContactManager& contacts, const SpringStore& springs,
+                          const StepContext& context, const WorldDef& settings) {
     if (!settings.enableSleep)
         return;
     const Real linear2 = settings.linearSleepVelocity * settings.linearSleepVelocity;
@@ -137,6 +137,22 @@ void Islands::updateSleep(BodyStore& bodies, ContactManager& contacts, const Ste
         }
     }
     // Joints, when they exist, unite their two bodies here exactly as touching contacts do.
+    // Springs do (a spring to a world point joins nothing).
+    for (const SpringDef& def : springs.defs) {
+        if (def.bodyB.isNull())
+            continue;
+        const std::uint32_t a = bodies.indexOf(def.bodyA);
+        const std::uint32_t b = bodies.indexOf(def.bodyB);
+        const bool dynamicA = bodies.isAwakeDynamic(a);
+        const bool dynamicB = bodies.isAwakeDynamic(b);
+        if (dynamicA && dynamicB) {
+            unite(bodies.info[a].awakeIndex, bodies.info[b].awakeIndex);
+        } else if (dynamicA && bodies.isMovingKinematic(b)) {
+            bodies.info[a].sleepTime = 0;
+        } else if (dynamicB && bodies.isMovingKinematic(a)) {
+            bodies.info[b].sleepTime = 0;
+        }
+    }
 
     islandSleepTime_.assign(count, std::numeric_limits<Real>::infinity());
     for (std::uint32_t k = 0; k < count; ++k) {

@@ -27,6 +27,7 @@
 
 #include "body_store.h"
 #include "contact_manager.h"
+#include "spring_store.h"
 #include "step_context.h"
 #include "tumble/world.h"
 
@@ -53,9 +54,10 @@ public:
     /// Islands stage: wakes the islands the narrowphase found touched by awake bodies, so this
     /// step solves them (their bodies catch up on this step's forces).
     void wakeTouched(BodyStore& bodies, ContactManager& contacts, const StepContext& context);
-    /// Sleep stage: timers, and the islands still for timeToSleep fall asleep.
-    void updateSleep(BodyStore& bodies, ContactManager& contacts, const StepContext& context,
-                     const WorldDef& settings);
+    /// Sleep stage: timers, and the islands still for timeToSleep fall asleep. Springs join
+    /// their two bodies' islands as touching contacts do.
+    void updateSleep(BodyStore& bodies, ContactManager& contacts, const SpringStore& springs,
+                     const StepContext& context, const WorldDef& settings);
 
 private:
     void putToSleep(BodyStore& bodies, ContactManager& contacts,

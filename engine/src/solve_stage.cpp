@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "springs.h"
+
 namespace tumble {
 
 Real mixFriction(Real a, Real b) {
@@ -37,7 +39,8 @@ std::span<const PseudoVelocity> SolveStage::pseudoVelocities() const {
 }
 
 SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, ContactManager& contacts,
-                            const StepContext& context, const SolverSettings& settings) {
+                            SpringStore& springs, const StepContext& context,
+                            const SolverSettings& settings) {
     const std::size_t awakeCount = bodies.awake.size();
     solverBodies_.resize(1 + awakeCount);
     solverBodies_[0] = SolverBody{};
@@ -100,8 +103,21 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
         }
     }
 
+    buildSpringRows(
+        springs, bodies, context.h,
+        [&](std::uint32_t index) {
+            return bodies.isAwake(index) ? solverIndex(bodies, index) : 0u;
+        },
+        springRows_, rowSpring_);
+
     const SolverStats stats =
-        solver_.solve(solverBodies_, constraints_, pseudo_, context.h, settings);
+        solver_.solve(solverBodies_, constraints_, pseudo_, context.h, settings, springRows_);
+
+    for (std::size_t j = 0; j < springRows_.size(); ++j) {
+        const SpringRow& row = springRows_[j];
+        const Real tension = -row.impulse * context.inverseH;
+        springs.state[rowSpring_[j]] = {tension, row.tensionOnly && row.impulse == 0};
+    }
 
     for (std::size_t j = 0; j < constraints_.size(); ++j) {
         const ContactConstraint& c = constraints_[j];

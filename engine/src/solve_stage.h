@@ -13,6 +13,7 @@
 #include "body_store.h"
 #include "contact_manager.h"
 #include "shape_store.h"
+#include "spring_store.h"
 #include "step_context.h"
 #include "tumble/contact.h"
 #include "tumble/solver/contact_solver.h"
@@ -23,9 +24,11 @@ class SolveStage {
 public:
     /// Solves every active contact with points between awake (or static) bodies; velocities of
     /// the awake dynamic bodies are updated, and pseudoVelocities() holds the split-impulse
-    /// velocities for integratePositions.
+    /// velocities for integratePositions. Implicit springs with an awake dynamic body at either
+    /// end are solved as soft rows with the contacts; their tensions go back into `springs`.
     SolverStats run(BodyStore& bodies, const ShapeStore& shapes, ContactManager& contacts,
-                    const StepContext& context, const SolverSettings& settings);
+                    SpringStore& springs, const StepContext& context,
+                    const SolverSettings& settings);
 
     /// One per awake body, in BodyStore::awake order (empty if the solver gave none).
     std::span<const PseudoVelocity> pseudoVelocities() const;
@@ -36,6 +39,8 @@ private:
     std::vector<ContactConstraint> constraints_;
     std::vector<std::uint32_t> constraintContact_;  ///< contact slot of each constraint
     std::vector<PseudoVelocity> pseudo_;
+    std::vector<SpringRow> springRows_;
+    std::vector<std::uint32_t> rowSpring_;  ///< spring index of each row
 };
 
 /// Mixing rules for a pair of materials: friction by geometric mean (a frictionless surface

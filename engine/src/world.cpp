@@ -52,6 +52,8 @@ void World::destroyBody(BodyId id) {
         impl_->shapes.remove(impl_->shapes.idAt(slot));
         slot = next;
     }
+    impl_->springs.removeAttachedTo(id);
+    impl_->drag.remove(id);
     impl_->bodies.remove(id);
 }
 bool World::isValid(BodyId id) const {
@@ -252,22 +254,36 @@ StepStatus World::step() {
     Impl& w = *impl_;
     const Clock::time_point start = Clock::now();
     const StepContext context = w.context();
+    if (w.springs.count() > 0)
+        wakeSpringLinked(w.springs, w.bodies, w.contacts, w.islands);
     w.bodies.savePreviousMotion();  // awake bodies: the others do not move
+    w.springs.saveState();
 
-    w.profile.forces = timed([&] { integrateVelocities(w.bodies, context); });
+    w.profile.forces = timed([&] {
+        w.forceElements.apply(w.springs, w.drag, w.bodies);
+        integrateVelocities(w.bodies, context);
+        w.forceElements.restore(w.bodies);
+    });
     w.profile.broadphase = timed([&] { w.contacts.updatePairs(); });
     w.profile.narrowphase = timed([&] { w.contacts.updateContacts(w.shapes, w.bodies, context); });
     w.profile.islands = timed([&] { w.islands.wakeTouched(w.bodies, w.contacts, context); });
     w.profile.solve = timed([&] {
-        w.solverStats = w.solve.run(w.bodies, w.shapes, w.contacts, context, w.settings.solver);
+        w.solverStats =
+            w.solve.run(w.bodies, w.shapes, w.contacts, w.springs, context, w.settings.solver);
     });
     w.profile.integrate =
         timed([&] { integratePositions(w.bodies, w.solve.pseudoVelocities(), context); });
     StepStatus status;
-    w.profile.finalize = timed([&] { status = w.finalize(); });
+    w.profile.finalize = timed([&] {
+        status = w.finalize();
+        if (!status.ok()) {
+            status.spring = w.springs.strongestOn(status.body);
+            w.springs.restoreState();
+        }
+    });
     w.profile.sleep = timed([&] {
         if (status.ok())
-            w.islands.updateSleep(w.bodies, w.contacts, context, w.settings);
+            w.islands.updateSleep(w.bodies, w.contacts, w.springs, context, w.settings);
     });
 
     w.profile.total = std::chrono::duration<double>(Clock::now() - start).count();

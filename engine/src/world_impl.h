@@ -9,6 +9,8 @@
 #include "island.h"
 #include "shape_store.h"
 #include "solve_stage.h"
+#include "spring_store.h"
+#include "springs.h"
 #include "step_context.h"
 #include "tumble/world.h"
 
@@ -30,6 +32,9 @@ struct World::Impl {
     ContactManager contacts;
     Islands islands;
     SolveStage solve;
+    SpringStore springs;
+    DragStore drag;
+    ForceElements forceElements;
     SolverStats solverStats;
 
     StepContext context() const {
@@ -74,7 +79,7 @@ struct World::Impl {
         for (const std::uint32_t i : bodies.awake) {
             if (!isFinite(bodies.motion[i])) {
                 bodies.restorePreviousMotion();
-                return {StepStatus::Code::NonFiniteState, bodies.idAt(i)};
+                return {StepStatus::Code::NonFiniteState, bodies.idAt(i), SpringId{}};
             }
         }
         for (const std::uint32_t i : bodies.awake)

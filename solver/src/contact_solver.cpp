@@ -182,7 +182,7 @@ void checkSolverSettings(const SolverSettings& s) {
 SolverStats ContactSolver::solve(std::span<SolverBody> bodies,
                                  std::span<ContactConstraint> constraints,
                                  std::vector<PseudoVelocity>& pseudo, Real h,
-                                 const SolverSettings& settings) {
+                                 const SolverSettings& settings, std::span<SpringRow> springs) {
     const Real inverseH = 1 / h;
     SolverStats stats;
     for (const ContactConstraint& c : constraints) {
@@ -191,17 +191,18 @@ SolverStats ContactSolver::solve(std::span<SolverBody> bodies,
         }
     }
     prepare(bodies, constraints, h, settings);
+    prepareSpringRows(bodies, springs, h, settings.warmStart);
     const bool split = settings.stabilisation == Stabilisation::SplitImpulse;
     const Real bias = split ? settings.splitImpulseFactor : settings.baumgarte;
     stats.iterations =
-        runSweeps(bodies, constraints, settings, inverseH, bias, settings.iterations);
+        runSweeps(bodies, constraints, springs, settings, inverseH, bias, settings.iterations);
     pseudo.resize(bodies.size());
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         pseudo[i].linear = split ? bodies[i].linearVelocity : Vec3::Zero();
         pseudo[i].angular = split ? bodies[i].angularVelocity : Vec3::Zero();
     }
     if (split) {
-        runSweeps(bodies, constraints, settings, inverseH, 0, settings.relaxIterations);
+        runSweeps(bodies, constraints, springs, settings, inverseH, 0, settings.relaxIterations);
         for (std::size_t i = 0; i < bodies.size(); ++i) {
             pseudo[i].linear -= bodies[i].linearVelocity;
             pseudo[i].angular -= bodies[i].angularVelocity;
@@ -215,11 +216,14 @@ SolverStats ContactSolver::solve(std::span<SolverBody> bodies,
 }
 
 int ContactSolver::runSweeps(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
-                             const SolverSettings& settings, Real inverseH, Real bias,
-                             int sweeps) const {
+                             std::span<SpringRow> springs, const SolverSettings& settings,
+                             Real inverseH, Real bias, int sweeps) const {
     for (int sweep = 0; sweep < sweeps;) {
-        const Real largestChange =
-            solveVelocitySweep(bodies, constraints, settings, inverseH, bias);
+        // Springs first, contacts last: non-penetration matters most. The springs' rows take no
+        // bias, so they are solved the same way in the biased and in the relax sweeps.
+        const Real springChange = solveSpringRows(bodies, springs, settings.relaxation);
+        const Real largestChange = std::max(
+            springChange, solveVelocitySweep(bodies, constraints, settings, inverseH, bias));
         ++sweep;
         if (settings.tolerance > 0 && largestChange <= settings.tolerance)
             return sweep;

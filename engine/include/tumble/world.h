@@ -25,6 +25,7 @@
 #include "tumble/query.h"
 #include "tumble/shape.h"
 #include "tumble/solver/contact_solver.h"
+#include "tumble/spring.h"
 
 namespace tumble {
 
@@ -63,7 +64,8 @@ struct WorldDef {
 
 /// Wall-clock time spent in each stage of the last step (s).
 struct Profile {
-    double forces = 0;       ///< external forces, gravity, gyroscopic term, damping -> velocities
+    double forces = 0;       ///< external forces, explicit springs, drag, gravity, gyroscopic term,
+                             ///< damping -> velocities
     double broadphase = 0;   ///< bounds and pair set
     double narrowphase = 0;  ///< manifolds and the contact cache
     double islands = 0;      ///< waking the sleeping islands that awake bodies began to touch
@@ -83,6 +85,11 @@ struct StepStatus {
     };
     Code code = Code::Ok;
     BodyId body;  ///< the first offending body, when there is one
+    /// The spring that drove it, where known: of the springs attached to `body`, the one with
+    /// the largest tension in the failed step, the stiffest among those whose tension
+    /// overflowed (an explicit spring past its stability limit, h > 2 / omega, is the usual
+    /// culprit). Null when no spring is attached.
+    SpringId spring;
 
     bool ok() const { return code == Code::Ok; }
 };
@@ -199,6 +206,27 @@ public:
     void applyLinearImpulse(BodyId id, const Vec3& impulse, const Vec3& worldPoint);
     /// An angular impulse (N m s), world frame, changing the angular velocity at once.
     void applyAngularImpulse(BodyId id, const Vec3& impulse);
+
+    // --- springs and drag (spring.h) ----------------------------------------------------------
+    /// Creates a spring-damper. Refuses (InvalidArgument) a missing, stale or null bodyA, a
+    /// stale bodyB, both ends on one body, rest length <= 0, stiffness or damping < 0, and
+    /// non-finite values. Wakes the bodies it joins.
+    SpringId createSpring(const SpringDef& def);
+    /// Destroys a spring; its id becomes invalid. Destroying a body destroys its springs.
+    void destroySpring(SpringId id);
+    bool isValid(SpringId id) const;
+    int springCount() const;
+    /// Room for this many springs without reallocating (for generators of large nets).
+    void reserveSprings(int count);
+    const SpringDef& springDef(SpringId id) const;
+    /// Current length, and the tension and slackness of the last step.
+    SpringState springState(SpringId id) const;
+    /// Elastic energy of all springs at the current poses (J).
+    Real springPotentialEnergy() const;
+    /// Sets a body's drag (all-zero coefficients remove it). Refuses negative or non-finite
+    /// coefficients and a non-finite projection; ignored by static and kinematic bodies.
+    void setDrag(BodyId id, const Drag& drag);
+    Drag drag(BodyId id) const;
 
     // --- stepping ----------------------------------------------------------------------------
     /// One fixed step of length settings().timeStep. Never throws.

@@ -38,6 +38,7 @@
 #include <vector>
 
 #include "tumble/solver/solver_body.h"
+#include "tumble/solver/spring_row.h"
 
 namespace tumble {
 
@@ -153,15 +154,19 @@ public:
     /// on return they hold the constrained velocities, `pseudo` the split-impulse velocities
     /// (zero under Baumgarte) to add when integrating positions only. Impulses are written back
     /// into `constraints` for warm starting the next step. Allocates only when the arrays grow.
+    /// Implicit spring rows (spring_row.h), when given, are solved first in every biased and
+    /// relax sweep alike (they are forces, not stabilisation); their impulses are written back.
     SolverStats solve(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
-                      std::vector<PseudoVelocity>& pseudo, Real h, const SolverSettings& settings);
+                      std::vector<PseudoVelocity>& pseudo, Real h, const SolverSettings& settings,
+                      std::span<SpringRow> springs = {});
 
 private:
     void prepare(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints, Real h,
                  const SolverSettings& settings);
     /// Runs up to `sweeps` PGS sweeps with the given bias factor; returns the number run.
     int runSweeps(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
-                  const SolverSettings& settings, Real inverseH, Real bias, int sweeps) const;
+                  std::span<SpringRow> springs, const SolverSettings& settings, Real inverseH,
+                  Real bias, int sweeps) const;
     Real solveVelocitySweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                             const SolverSettings& settings, Real inverseH, Real bias) const;
     void solveNormals(SolverBody& a, SolverBody& b, ContactConstraint& c,

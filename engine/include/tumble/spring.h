@@ -1,0 +1,73 @@
+#pragma once
+/// Spring-damper elements and aerodynamic drag: the force elements of lumped-mass strings and
+/// nets.
+///
+/// A spring joins an anchor on body A to an anchor on body B, or to a fixed world point. Its
+/// tension (N, positive when it pulls the anchors together) is k (L - L0) + c dL/dt. Two
+/// formulations, chosen per element:
+/// - Explicit: the force is computed from the state at the start of the step and applied with the
+///   other forces before the velocity update, exactly as in the ESA study. Stable only while
+///   h < 2 / omega for a mass on one spring, omega = sqrt(k / m); a uniform string of masses
+///   m and elements k needs h < 1 / omega_e (its highest mode is 2 omega_e).
+/// - Implicit (default): a soft constraint row in the solver, equivalent to implicit Euler on the
+///   spring (see tumble/solver/spring_row.h). Stable at any stiffness; modes the step cannot
+///   resolve (omega h >> 1) are damped rather than amplified.
+
+#include <cstdint>
+
+#include "tumble/body.h"
+#include "tumble/core/math.h"
+
+namespace tumble {
+
+/// A value handle to a spring, like BodyId: checked by generation, zero is null.
+struct SpringId {
+    std::uint32_t index = 0;       ///< slot in the world's spring table
+    std::uint32_t generation = 0;  ///< 0 means null; bumped each time the slot is reused
+
+    bool isNull() const { return generation == 0; }
+    friend bool operator==(SpringId, SpringId) = default;
+};
+
+enum class SpringFormulation : std::uint8_t {
+    Explicit,  ///< force before the velocity update (the study's scheme; h < 1 / omega_e)
+    Implicit,  ///< soft constraint row, implicit Euler: stable at any stiffness (default)
+};
+
+/// Everything needed to create a spring. Copied by World::createSpring, never retained.
+struct SpringDef {
+    BodyId bodyA;  ///< must be a valid body
+    /// A valid body other than bodyA, or null: then the spring is anchored at the world point
+    /// localAnchorB.
+    BodyId bodyB;
+    Vec3 localAnchorA = Vec3::Zero();  ///< in A's body frame, from its origin (m)
+    Vec3 localAnchorB = Vec3::Zero();  ///< in B's body frame, or a world point when bodyB is null
+    Real restLength = 1;               ///< L0 (m), finite and > 0
+    Real stiffness = 0;                ///< k (N/m), finite and >= 0; see axialStiffness
+    Real damping = 0;                  ///< c (N s/m), finite and >= 0
+    bool tensionOnly = false;          ///< a thread: pulls when stretched, pushes never
+    SpringFormulation formulation = SpringFormulation::Implicit;
+};
+
+/// k = E A / L0 (N/m) of a uniform elastic bar or thread. Refuses (InvalidArgument) E, A or L0
+/// that are not finite and > 0.
+Real axialStiffness(Real youngsModulus, Real area, Real restLength);
+
+/// What a spring reports.
+struct SpringState {
+    Real length = 0;     ///< anchor distance at the current poses (m)
+    Real tension = 0;    ///< of the last step (N); positive pulls the anchors together
+    bool slack = false;  ///< a tension-only element that carried nothing in the last step
+};
+
+/// Aerodynamic drag on a body's centre of mass, applied with the other forces (explicitly):
+/// with u = projection v, the force is -(linear + quadratic |u|) u. The projection restricts drag
+/// to chosen directions, e.g. diag(1, 1, 0) for horizontal drag only, as in the ESA study.
+/// Explicit, so stable while h (linear + 2 quadratic |u|) / m < 2.
+struct Drag {
+    Real linear = 0;                     ///< b1 (N s/m), finite and >= 0
+    Real quadratic = 0;                  ///< b2 (N s^2/m^2), finite and >= 0
+    Mat3 projection = Mat3::Identity();  ///< finite; identity: isotropic
+};
+
+}  // namespace tumble

@@ -1,0 +1,152 @@
+#include "spring_store.h"
+
+#include <cmath>
+#include <limits>
+
+#include "tumble/core/error.h"
+
+namespace tumble {
+
+SpringId SpringStore::add(const SpringDef& def) {
+    std::uint32_t slotIndex;
+    if (freeSlots_.empty()) {
+        slotIndex = static_cast<std::uint32_t>(slots_.size());
+        slots_.push_back({});
+    } else {
+        slotIndex = freeSlots_.back();
+        freeSlots_.pop_back();
+    }
+    Slot& slot = slots_[slotIndex];
+    slot.generation += 1;
+    slot.dense = count();
+    slot.alive = true;
+    defs.push_back(def);
+    state.push_back({});
+    previousState.push_back({});
+    slotOf_.push_back(slotIndex);
+    if (def.formulation == SpringFormulation::Implicit)
+        implicitCount += 1;
+    return SpringId{slotIndex, slot.generation};
+}
+
+void SpringStore::remove(SpringId id) {
+    const std::uint32_t index = indexOf(id);
+    if (defs[index].formulation == SpringFormulation::Implicit)
+        implicitCount -= 1;
+    const std::uint32_t last = count() - 1;
+    if (index != last) {
+        defs[index] = defs[last];
+        state[index] = state[last];
+        previousState[index] = previousState[last];
+        slotOf_[index] = slotOf_[last];
+        slots_[slotOf_[index]].dense = index;
+    }
+    defs.pop_back();
+    state.pop_back();
+    previousState.pop_back();
+    slotOf_.pop_back();
+    slots_[id.index].alive = false;
+    freeSlots_.push_back(id.index);
+}
+
+bool SpringStore::isValid(SpringId id) const {
+    return id.generation != 0 && id.index < slots_.size() && slots_[id.index].alive &&
+           slots_[id.index].generation == id.generation;
+}
+
+std::uint32_t SpringStore::indexOf(SpringId id) const {
+    if (!isValid(id)) {
+        fail("SpringId {index ", id.index, ", generation ", id.generation,
+             "} is null, stale or unknown");
+    }
+    return slots_[id.index].dense;
+}
+
+SpringId SpringStore::idAt(std::uint32_t index) const {
+    const std::uint32_t slot = slotOf_[index];
+    return SpringId{slot, slots_[slot].generation};
+}
+
+void SpringStore::reserve(std::size_t n) {
+    defs.reserve(n);
+    state.reserve(n);
+    previousState.reserve(n);
+    slotOf_.reserve(n);
+    slots_.reserve(n);
+}
+
+void SpringStore::removeAttachedTo(BodyId body) {
+    // Backwards, so the element moved into a freed index has already been looked at.
+    for (std::uint32_t i = count(); i-- > 0;) {
+        if (defs[i].bodyA == body || defs[i].bodyB == body)
+            remove(idAt(i));
+    }
+}
+
+SpringId SpringStore::strongestOn(BodyId body) const {
+    // By the largest |tension|; when several overflowed together (a body gone to infinity
+    // stretches every spring on it), by the largest stiffness: the stiffest is the first to pass
+    // its stability limit h < 2 / omega.
+    SpringId best;
+    Real largest = -1;
+    Real stiffest = -1;
+    for (std::uint32_t i = 0; i < count(); ++i) {
+        if (!(defs[i].bodyA == body || defs[i].bodyB == body))
+            continue;
+        const Real t = state[i].tension;
+        const Real size = std::isfinite(t) ? std::abs(t) : std::numeric_limits<Real>::infinity();
+        if (size > largest || (size == largest && defs[i].stiffness > stiffest)) {
+            largest = size;
+            stiffest = defs[i].stiffness;
+            best = idAt(i);
+        }
+    }
+    return best;
+}
+
+std::uint32_t DragStore::find(BodyId body) const {
+    if (body.index >= denseOfSlot_.size())
+        return kNone;
+    const std::uint32_t dense = denseOfSlot_[body.index];
+    return dense != kNone && bodies[dense] == body ? dense : kNone;
+}
+
+void DragStore::set(BodyId body, const Drag& drag) {
+    const std::uint32_t dense = find(body);
+    const bool none = drag.linear == 0 && drag.quadratic == 0;
+    if (dense != kNone) {
+        if (none) {
+            remove(body);
+        } else {
+            drags[dense] = drag;
+        }
+        return;
+    }
+    if (none)
+        return;
+    if (body.index >= denseOfSlot_.size())
+        denseOfSlot_.resize(body.index + 1, kNone);
+    denseOfSlot_[body.index] = static_cast<std::uint32_t>(bodies.size());
+    bodies.push_back(body);
+    drags.push_back(drag);
+}
+
+Drag DragStore::get(BodyId body) const {
+    const std::uint32_t dense = find(body);
+    return dense == kNone ? Drag{} : drags[dense];
+}
+
+void DragStore::remove(BodyId body) {
+    const std::uint32_t dense = find(body);
+    if (dense == kNone)
+        return;
+    // Erase in place (not swap with the last) so the order of application stays the order in
+    // which drag was set; removals are rare.
+    bodies.erase(bodies.begin() + dense);
+    drags.erase(drags.begin() + dense);
+    denseOfSlot_[body.index] = kNone;
+    for (std::uint32_t i = dense; i < bodies.size(); ++i)
+        denseOfSlot_[bodies[i].index] = i;
+}
+
+}  // namespace tumble

@@ -1,0 +1,80 @@
+#pragma once
+/// Dense storage of spring-dampers and of per-body drag, behind value handles.
+///
+/// Springs live in parallel contiguous arrays (definition, last-step state) indexed by a dense
+/// index; ids name a slot whose generation must match. Destroying a spring moves the last one
+/// into its place, so the order (which is the order the solver sweeps them in) depends only on the
+/// sequence of create and destroy calls. A net of thousands of threads costs one push_back each.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "body_store.h"
+#include "tumble/spring.h"
+
+namespace tumble {
+
+/// The per-step result of a spring, kept for reporting and warm starting.
+struct SpringStepState {
+    Real tension = 0;    ///< (N), positive pulls
+    bool slack = false;  ///< tension-only and carrying nothing
+};
+
+class SpringStore {
+public:
+    SpringId add(const SpringDef& def);
+    void remove(SpringId id);
+    bool isValid(SpringId id) const;
+    /// Dense index of a valid id; refuses (InvalidArgument) a null, stale or unknown id.
+    std::uint32_t indexOf(SpringId id) const;
+    SpringId idAt(std::uint32_t index) const;
+    std::uint32_t count() const { return static_cast<std::uint32_t>(defs.size()); }
+    void reserve(std::size_t count);
+
+    /// Removes every spring attached to the body (its id is about to die).
+    void removeAttachedTo(BodyId body);
+
+    /// state -> previousState at the start of a step, and back if the step fails.
+    void saveState() { previousState = state; }
+    void restoreState() { state = previousState; }
+
+    /// The spring attached to `body` with the largest |tension| in the step just taken (a
+    /// non-finite tension counts as the largest); null when none is attached.
+    SpringId strongestOn(BodyId body) const;
+
+    std::vector<SpringDef> defs;
+    std::vector<SpringStepState> state;
+    std::vector<SpringStepState> previousState;
+    std::uint32_t implicitCount = 0;  ///< how many use SpringFormulation::Implicit
+
+private:
+    struct Slot {
+        std::uint32_t generation = 0;
+        std::uint32_t dense = 0;
+        bool alive = false;
+    };
+    std::vector<Slot> slots_;
+    std::vector<std::uint32_t> slotOf_;     ///< per dense index
+    std::vector<std::uint32_t> freeSlots_;  ///< reused last-in first-out
+};
+
+/// Drag of the bodies that have any, in the order drag was first set.
+class DragStore {
+public:
+    /// Sets (or with all-zero coefficients, clears) the body's drag.
+    void set(BodyId body, const Drag& drag);
+    Drag get(BodyId body) const;
+    void remove(BodyId body);
+    bool empty() const { return bodies.empty(); }
+
+    std::vector<BodyId> bodies;
+    std::vector<Drag> drags;
+
+private:
+    std::uint32_t find(BodyId body) const;  ///< dense index or kNone
+    static constexpr std::uint32_t kNone = 0xFFFFFFFF;
+    std::vector<std::uint32_t> denseOfSlot_;  ///< by BodyId::index
+};
+
+}  // namespace tumble

@@ -1,0 +1,55 @@
+#pragma once
+/// The force elements of a step: explicit spring-dampers and drag (before the velocity update),
+/// the rows of the implicit springs (for the solve stage), and the islands springs join.
+
+#include <cstdint>
+#include <vector>
+
+#include "body_store.h"
+#include "contact_manager.h"
+#include "island.h"
+#include "spring_store.h"
+#include "step_context.h"
+#include "tumble/solver/spring_row.h"
+
+namespace tumble {
+
+/// World position of a spring anchor: on the body, or the world point itself for a null body.
+Vec3 anchorPosition(const BodyStore& bodies, BodyId body, const Vec3& localAnchor);
+
+/// Anchor distance of spring `index` at the current poses (m).
+Real springLength(const SpringStore& springs, const BodyStore& bodies, std::uint32_t index);
+
+/// Elastic energy of every spring at the current poses (J): k (L - L0)^2 / 2, and nothing for a
+/// tension-only element shorter than its rest length.
+Real springPotentialEnergy(const SpringStore& springs, const BodyStore& bodies);
+
+/// A spring keeps both its bodies in one island: wakes every sleeping dynamic body linked by a
+/// spring to an awake dynamic or moving kinematic body, repeated until nothing more wakes.
+void wakeSpringLinked(const SpringStore& springs, BodyStore& bodies, ContactManager& contacts,
+                      Islands& islands);
+
+/// The forces stage's share of springs and drag. apply() adds the explicit springs' forces and
+/// drag to BodyStore::forces of the awake dynamic bodies (saving what the application had put
+/// there), restore() puts the application's forces back after the velocity update, so a failed
+/// step leaves them as they were.
+class ForceElements {
+public:
+    void apply(SpringStore& springs, const DragStore& drag, BodyStore& bodies);
+    void restore(BodyStore& bodies);
+
+private:
+    std::vector<BodyForces> saved_;  ///< per awake body, in BodyStore::awake order
+    bool applied_ = false;
+};
+
+/// Rows of the implicit springs with an awake dynamic body at either end. `solverIndex` maps a
+/// body's dense index to its solver body; rows are warm-started from last step's tension.
+template <typename SolverIndex>
+void buildSpringRows(const SpringStore& springs, const BodyStore& bodies, Real h,
+                     SolverIndex&& solverIndex, std::vector<SpringRow>& rows,
+                     std::vector<std::uint32_t>& rowSpring);
+
+}  // namespace tumble
+
+#include "springs_inl.h"

@@ -1,0 +1,241 @@
+// spring-stability: where explicit spring-dampers stop being stable, and that implicit ones do
+// not (the study's eq. 9).
+//
+// 1. One mass m on an explicit spring k to a fixed point: semi-implicit Euler is stable iff
+//    omega h < 2, omega = sqrt(k / m). The boundary is found by bisection on omega h, "bounded"
+//    meaning the largest excursion over the last quarter of the run is at most twice that over
+//    the first quarter (and the step never reports a non-finite state).
+// 2. A uniform string of N masses m joined by N + 1 explicit springs k between fixed points,
+//    under tension: its highest (axial) mode has omega_max = 2 omega_e sin(N pi / (2 (N + 1))),
+//    just below 2 omega_e, so the boundary is h = 1 / (omega_e sin(...)) ~ 1 / omega_e. Found by
+//    bisection on omega_e h with every mode excited.
+// 3. Below the boundary (omega_e h = 0.5 claimed; 0.9 reported) the string's total energy (kinetic
+// + elastic)
+//    shows no secular drift over 1000 periods of its fundamental: the least-squares slope of E(t)
+//    times the duration, relative to the mean energy. (Semi-implicit Euler's energy oscillates
+//    step to step; it is its mean that must not move.)
+// 4. The same string with implicit springs at omega_e h = 100 stays bounded (largest excursion
+//    over the last quarter at most twice that over the first). Its energy is reported, not
+//    claimed: exact implicit Euler would only dissipate, but the solver's fixed PGS budget does
+//    not converge a chain this stiff, and the unconverged part of the (beta / h) C term puts
+//    energy in (measured: up to 7.8x the initial energy with 10 + 10 sweeps, N = 12).
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "../case.h"
+#include "lumped.h"
+
+namespace tumble::validation {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+WorldDef quiet(double h) {
+    WorldDef def;
+    def.gravity = Vec3::Zero();
+    def.timeStep = h;
+    def.enableSleep = false;
+    return def;
+}
+
+// Largest |x - x_eq| over the last quarter / over the first quarter; infinite when unstable.
+double growth(const std::vector<double>& excursion) {
+    const std::size_t n = excursion.size();
+    const std::size_t q = std::max<std::size_t>(n / 4, 1);
+    double early = 0;
+    double late = 0;
+    for (std::size_t i = 0; i < q; ++i)
+        early = std::max(early, excursion[i]);
+    for (std::size_t i = n - q; i < n; ++i)
+        late = std::max(late, excursion[i]);
+    return late / early;
+}
+
+bool singleMassBounded(double omegaH, int steps) {
+    const double h = 0.01;
+    const double k = (omegaH / h) * (omegaH / h);  // m = 1
+    World world(quiet(h));
+    const BodyId body = addPointMass(world, Vec3(1.1, 0, 0), 1);
+    SpringDef def;
+    def.bodyA = body;
+    def.restLength = 1;
+    def.stiffness = k;
+    def.formulation = SpringFormulation::Explicit;
+    world.createSpring(def);
+    std::vector<double> excursion;
+    for (int i = 0; i < steps; ++i) {
+        if (!world.step().ok())
+            return false;
+        excursion.push_back(std::abs(world.position(body).x() - 1));
+        if (excursion.back() > 1e6)
+            return false;
+    }
+    return growth(excursion) <= 2;
+}
+
+struct StringRun {
+    bool finite = true;
+    double growth = 0;
+    double drift = 0;           // slope of E(t) * duration / mean E
+    double maxEnergyRatio = 0;  // max E / E(0)
+};
+
+// N masses of m = 0.01 kg, spacing 0.1 m, springs of k = 100 N/m (omega_e = 100 rad/s) pulled
+// 1 % past their rest length, between fixed points; every mass displaced a little along and
+// across the string in a deterministic pattern (alternating signs excite the highest mode).
+StringRun runString(int n, double omegaEH, SpringFormulation formulation, int steps, bool energy) {
+    const double m = 0.01;
+    const double k = 100;
+    const double spacing = 0.1;
+    const double h = omegaEH / std::sqrt(k / m);
+    World world(quiet(h));
+    std::vector<BodyId> masses;
+    for (int j = 1; j <= n; ++j) {
+        const double sign = (j % 2 == 0) ? 1 : -1;
+        const Vec3 offset(1e-3 * sign + 5e-4 * std::sin(1.3 * j), 1e-3 * std::sin(0.7 * j),
+                          1e-3 * std::cos(2.1 * j));
+        masses.push_back(addPointMass(world, Vec3(spacing * j, 0, 0) + offset, m));
+    }
+    SpringDef def;
+    def.restLength = 0.99 * spacing;
+    def.stiffness = k;
+    def.formulation = formulation;
+    for (int j = 0; j <= n; ++j) {
+        if (j == 0) {
+            def.bodyA = masses.front();
+            def.bodyB = BodyId{};
+            def.localAnchorB = Vec3::Zero();
+        } else if (j == n) {
+            def.bodyA = masses.back();
+            def.bodyB = BodyId{};
+            def.localAnchorB = Vec3(spacing * (n + 1), 0, 0);
+        } else {
+            def.bodyA = masses[j - 1];
+            def.bodyB = masses[j];
+            def.localAnchorB = Vec3::Zero();
+        }
+        world.createSpring(def);
+    }
+    auto totalEnergy = [&] { return world.kineticEnergy() + world.springPotentialEnergy(); };
+    StringRun run;
+    const double e0 = totalEnergy();
+    std::vector<double> excursion;
+    excursion.reserve(steps);
+    double st = 0, se = 0, stt = 0, ste = 0;
+    for (int i = 0; i < steps; ++i) {
+        if (!world.step().ok()) {
+            run.finite = false;
+            run.growth = INFINITY;
+            return run;
+        }
+        double worst = 0;
+        for (int j = 0; j < n; ++j) {
+            const Vec3 rest(spacing * (j + 1), 0, 0);
+            worst = std::max(worst, (world.position(masses[j]) - rest).norm());
+        }
+        excursion.push_back(worst);
+        if (worst > 1e3) {
+            run.growth = INFINITY;
+            return run;
+        }
+        if (energy) {
+            const double t = h * (i + 1);
+            const double e = totalEnergy();
+            st += t;
+            se += e;
+            stt += t * t;
+            ste += t * e;
+            run.maxEnergyRatio = std::max(run.maxEnergyRatio, e / e0);
+        }
+    }
+    run.growth = growth(excursion);
+    if (energy) {
+        const double count = steps;
+        const double slope = (count * ste - st * se) / (count * stt - st * st);
+        run.drift = slope * (h * steps) / (se / count);
+    }
+    return run;
+}
+
+CaseResult run(const CaseOptions& options) {
+    CaseResult result;
+    // 1. single mass
+    const int singleSteps = options.fast ? 2000 : 8000;
+    double lo = 1.8;
+    double hi = 2.2;
+    for (int i = 0; i < (options.fast ? 12 : 18); ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (singleMassBounded(mid, singleSteps) ? lo : hi) = mid;
+    }
+    const bool below = singleMassBounded(1.95, singleSteps);
+    const bool above = !singleMassBounded(2.05, singleSteps);
+    result.metric("single_mass_boundary_omega_h", lo);
+    result.tolerance("single_mass_boundary_min", 1.95);
+    result.tolerance("single_mass_boundary_max", 2.0);
+    result.check(lo >= 1.95 && lo <= 2.0, "single-mass boundary outside [1.95, 2.0]");
+    result.check(below && above,
+                 "single mass not bounded at omega h = 1.95 or not growing at 2.05");
+
+    // 2. explicit string boundary
+    const int n = options.fast ? 12 : 32;
+    const int stringSteps = options.fast ? 2000 : 6000;
+    lo = 0.8;
+    hi = 1.3;
+    for (int i = 0; i < (options.fast ? 10 : 16); ++i) {
+        const double mid = 0.5 * (lo + hi);
+        const StringRun r = runString(n, mid, SpringFormulation::Explicit, stringSteps, false);
+        (r.finite && r.growth <= 2 ? lo : hi) = mid;
+    }
+    const double theory = 1 / std::sin(n * kPi / (2.0 * (n + 1)));
+    result.metric("string_masses", n);
+    result.metric("string_boundary_omega_e_h", lo);
+    result.metric("string_boundary_theory_omega_e_h", theory);
+    result.tolerance("string_boundary_min", 0.9);
+    result.tolerance("string_boundary_max", 1.05);
+    result.check(lo >= 0.9 && lo <= 1.05, "explicit string boundary outside 0.9-1.05 of 1/omega_e");
+
+    // 3. energy drift below the boundary, over 1000 periods of the fundamental (100 when fast)
+    const double periods = options.fast ? 100 : 1000;
+    const double omega1 = 2 * 100 * std::sin(kPi / (2.0 * (n + 1)));
+    double worstDrift = 0;
+    for (const double omegaEH : {0.5, 0.9}) {
+        const double h = omegaEH / 100;
+        const int steps = static_cast<int>(periods * 2 * kPi / omega1 / h);
+        const StringRun r = runString(n, omegaEH, SpringFormulation::Explicit, steps, true);
+        result.table.push_back({{{"omega_e_h", omegaEH},
+                                 {"periods", periods},
+                                 {"steps", steps},
+                                 {"energy_drift", r.drift},
+                                 {"max_energy_ratio", r.maxEnergyRatio}}});
+        // Claimed at 0.5; 0.9 is reported only: with N = 32 it lost half its energy over 1000
+        // periods (nonlinear transfer into modes near the limit), which is an open finding.
+        if (omegaEH == 0.5)
+            worstDrift = std::max(worstDrift, r.finite ? std::abs(r.drift) : INFINITY);
+    }
+    result.metric("explicit_energy_drift_max", worstDrift);
+    result.tolerance("energy_drift_max", 1e-3);
+    result.check(worstDrift < 1e-3, "explicit string energy drifts by 0.1 % or more");
+
+    // 4. implicit at omega_e h = 100
+    const StringRun implicit =
+        runString(n, 100, SpringFormulation::Implicit, options.fast ? 300 : 1000, true);
+    result.metric("implicit_100_growth", implicit.growth);
+    result.metric("implicit_100_max_energy_ratio", implicit.maxEnergyRatio);
+    result.tolerance("implicit_growth_max", 2);
+    result.check(implicit.finite && implicit.growth <= 2, "implicit string unbounded at 100");
+    return result;
+}
+
+}  // namespace
+
+ValidationCase springStabilityCase() {
+    return {"spring-stability",
+            "explicit springs: one mass stable iff omega h < 2, a string iff h < ~1/omega_e, no "
+            "energy drift below; implicit springs bounded at omega_e h = 100 (study eq. 9)",
+            run};
+}
+
+}  // namespace tumble::validation
