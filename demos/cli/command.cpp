@@ -113,7 +113,7 @@ int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ost
         options.terminal = terminal;
         if (recordRate < 0 && run->count("--record-rate") != 0)
             fail("--record-rate = ", recordRate, " must be >= 0");
-        return runScene(loaded, options, out);
+        return runScene(loaded, options, out, err);
     } catch (const InvalidArgument& e) {
         err << "tumble: error: " << e.what() << "\n";
         return 2;

@@ -72,7 +72,7 @@ Real JsonObject::positive(const std::string& key, Real fallback, bool allowZero)
         return fallback;
     const Real x = number(key, fallback);
     if (allowZero ? x < 0 : x <= 0)
-        failAt(pathOf(key), "= ", x, " must be ", allowZero ? ">= 0" : "> 0");
+        failAt(pathOf(key), "must be ", allowZero ? ">= 0" : "> 0", " (got ", x, ")");
     return x;
 }
 
@@ -84,7 +84,7 @@ int JsonObject::integer(const std::string& key, int fallback, int minimum) {
         failAt(pathOf(key), "expected an integer, got ", typeName(*v), " ", v->dump());
     const long long x = v->get<long long>();
     if (x < minimum || x > 1'000'000'000)
-        failAt(pathOf(key), "= ", x, " must be >= ", minimum);
+        failAt(pathOf(key), "must be >= ", minimum, " (got ", x, ")");
     return static_cast<int>(x);
 }
 

@@ -9,9 +9,9 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <ostream>
 
 #include "svg.h"
 
@@ -149,7 +149,8 @@ std::string summaryJson(const Summary& s) {
     return j.dump(2) + "\n";
 }
 
-int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, Summary* result) {
+int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, std::ostream& err,
+             Summary* result) {
     for (const int t : options.trace) {
         if (t < 0 || t >= static_cast<int>(scene.bodies.size()))
             fail("--trace ", t, ": the scene has bodies 0 to ", scene.bodies.size() - 1);
@@ -234,8 +235,8 @@ int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, S
     if (result != nullptr)
         *result = s;
     if (s.status != "ok") {
-        std::cerr << "tumble: step " << s.steps + 1 << " failed: " << s.status << " (body "
-                  << s.failedBody << ")\n";
+        err << "tumble: step " << s.steps + 1 << " failed: " << s.status << " (body "
+            << s.failedBody << ")\n";
         return 1;
     }
     return 0;

@@ -48,10 +48,11 @@ struct Summary {
 
 Energy energyOf(const BuiltScene& built);
 
-/// Runs `scene` for scene.duration. Returns 0, or 1 when a step failed (the outputs are still
+/// Runs `scene` for scene.duration, printing the summary table to `out` (unless quiet) and a
+/// failed step to `err`. Returns 0, or 1 when a step failed (the outputs are still
 /// written, the summary saying what failed). Output files that cannot be opened are refused
 /// (InvalidArgument) before the first step.
-int runScene(const Scene& scene, const RunOptions& options, std::ostream& out,
+int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, std::ostream& err,
              Summary* result = nullptr);
 
 /// The summary as JSON text.

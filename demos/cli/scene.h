@@ -34,6 +34,7 @@ struct OutputSpec {
 struct Scene {
     std::string name;  ///< file stem or built-in name
     std::string description;
+    std::string source;  ///< the file it came from, for messages
     WorldDef world;
     Real duration = 5;  ///< simulated time (s), > 0
     std::vector<BodySpec> bodies;

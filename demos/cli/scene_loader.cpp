@@ -229,9 +229,12 @@ Json readJsonFile(const std::string& path) {
         const auto line = 1 + std::count(text.begin(), text.begin() + end, '\n');
         const std::size_t lineStart = text.rfind('\n', end == 0 ? 0 : end - 1);
         const std::size_t column = lineStart == std::string::npos ? end + 1 : end - lineStart;
+        // Drop nlohmann's "[json.exception...] parse error at line L, column C: " prefix.
         std::string what = e.what();
-        if (const std::size_t colon = what.find("parse error"); colon != std::string::npos)
-            what = what.substr(colon);
+        if (const std::size_t at = what.find("parse error"); at != std::string::npos) {
+            const std::size_t colon = what.find(": ", at);
+            what = what.substr(colon == std::string::npos ? at : colon + 2);
+        }
         fail(path, ":", line, ":", column, ": JSON syntax error: ", what);
     }
 }
@@ -321,7 +324,9 @@ Scene loadScene(const std::string& nameOrFile, const std::vector<std::string>& o
     for (const std::string& o : overrides)
         applyOverride(document, o);
     try {
-        return parseScene(document, fs::path(path).stem().string());
+        Scene scene = parseScene(document, fs::path(path).stem().string());
+        scene.source = path;
+        return scene;
     } catch (const InvalidArgument& e) {
         fail(path, ": ", e.what());
     }
@@ -332,7 +337,7 @@ BuiltScene buildScene(const Scene& scene) {
     try {
         made.emplace(scene.world);
     } catch (const InvalidArgument& e) {
-        fail("world: ", e.what());
+        fail(scene.source, ": world: ", e.what());
     }
     BuiltScene built{std::move(*made), {}, {}, {}};
     World& world = built.world;
@@ -351,7 +356,7 @@ BuiltScene buildScene(const Scene& scene) {
             built.bodies.push_back(body);
             built.gravityScale.push_back(spec.def.gravityScale);
         } catch (const InvalidArgument& e) {
-            fail(spec.path, " (\"", spec.name, "\"): ", e.what());
+            fail(scene.source, ": ", spec.path, " (\"", spec.name, "\"): ", e.what());
         }
     }
     return built;

@@ -246,10 +246,8 @@ std::string SvgPicture::render() const {
     const double pad = 0.08 * std::max(u1 - u0, v1 - v0) + 0.01;
     u0 -= pad, u1 += pad, v0 -= pad, v1 += pad;
     const double minHeight = (u1 - u0) / 3, minWidth = (v1 - v0) / 3;
-    if (v1 - v0 < minHeight) {
-        const double c = (v0 + v1) / 2;
-        v0 = c - minHeight / 2, v1 = c + minHeight / 2;
-    }
+    if (v1 - v0 < minHeight)  // room above: what is low (the ground) stays at the bottom
+        v1 = v0 + minHeight;
     if (u1 - u0 < minWidth) {
         const double c = (u0 + u1) / 2;
         u0 = c - minWidth / 2, u1 = c + minWidth / 2;
@@ -320,11 +318,11 @@ std::string SvgPicture::render() const {
             } else if (item.kind == Item::Kind::Contact) {
                 const Point p = px(item.points[0]);
                 const double n = std::hypot(item.normal[0], item.normal[1]);
-                put("<circle cx=\"%.1f\" cy=\"%.1f\" r=\"1.8\" fill=\"#d22\"/>\n", p[0], p[1]);
+                put("<circle cx=\"%.1f\" cy=\"%.1f\" r=\"1.2\" fill=\"#d22\"/>\n", p[0], p[1]);
                 if (n > 1e-3)
                     put("<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#d22\" "
                         "stroke-width=\"0.8\"/>\n",
-                        p[0], p[1], p[0] + 8 * item.normal[0] / n, p[1] - 8 * item.normal[1] / n);
+                        p[0], p[1], p[0] + 6 * item.normal[0] / n, p[1] - 6 * item.normal[1] / n);
             }
         }
         for (std::size_t t = 0; t < traces_.size(); ++t) {
