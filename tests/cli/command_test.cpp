@@ -141,6 +141,36 @@ TEST(Command, RecordsTrajectoriesAtTheChosenRate) {
     EXPECT_NEAR(z, 1.0335 - 0.5 * 9.81 * 0.1 * 0.1, 9.81 * 0.1 / 240);
 }
 
+TEST(Command, BounceSceneApexesFallByRestitutionSquared) {
+    // The tennis ball (e = 0.75 on both materials, bottom dropped from 1 m): Newton's law gives
+    // apex k at e^(2k) m. The scene's h = 1/240 and threshold 0.2 m/s keep 6 bounces elastic.
+    const fs::path dir = scratch("bounce");
+    const fs::path file = dir / "t.csv";
+    ASSERT_EQ(tumbleRun({"run", "bounce", "--quiet", "--record", file.string()}).status, 0);
+    std::istringstream csv(slurp(file));
+    std::string line;
+    std::getline(csv, line);
+    std::vector<double> height;
+    while (std::getline(csv, line)) {
+        double t = 0, x = 0, y = 0, z = 0;
+        std::sscanf(line.c_str(), "%lf,%*d,ball,%lf,%lf,%lf", &t, &x, &y, &z);
+        height.push_back(z - 0.0335);
+    }
+    std::vector<double> apexes;
+    for (std::size_t i = 1; i + 1 < height.size(); ++i) {
+        if (height[i] > height[i - 1] && height[i] >= height[i + 1])
+            apexes.push_back(height[i]);
+    }
+    ASSERT_GE(apexes.size(), 6u);
+    const double e2 = 0.75 * 0.75;
+    double expected = 1;
+    for (std::size_t k = 0; k < 6; ++k) {
+        expected *= e2;
+        // Measured 0.5625, 0.3164, 0.1780, 0.1001, 0.0563, 0.0317 m: within 0.1 % of e^(2k).
+        EXPECT_NEAR(apexes[k], expected, 0.01 * expected + 1e-4) << "apex " << k + 1;
+    }
+}
+
 TEST(Command, PictureHasThreePanelsAndTheTrace) {
     const fs::path dir = scratch("picture");
     const fs::path file = dir / "p.svg";
