@@ -1,0 +1,123 @@
+#include "command.h"
+
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "run.h"
+#include "scene.h"
+
+namespace tumble::cli {
+namespace {
+
+std::string number(double x) {
+    std::ostringstream s;
+    s.precision(17);
+    s << x;
+    return s.str();
+}
+
+/// `tumble scenes`: one line per built-in scene, its name and description.
+int listScenes(const std::string& directory, std::ostream& out, std::ostream& err) {
+    const std::vector<std::string> names = builtinScenes(directory);
+    if (names.empty()) {
+        err << "tumble: no scenes in " << directory << " (set TUMBLE_SCENE_DIR)\n";
+        return 2;
+    }
+    for (const std::string& name : names) {
+        try {
+            const Scene scene = loadScene(name, {}, directory);
+            out << name << std::string(name.size() < 10 ? 10 - name.size() : 1, ' ')
+                << scene.description << "\n";
+        } catch (const InvalidArgument& e) {
+            err << "tumble: " << e.what() << "\n";
+            return 2;
+        }
+    }
+    return 0;
+}
+
+}  // namespace
+
+int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
+               bool terminal) {
+    CLI::App app{
+        "tumble: run Tumble's rigid-body scenes headless (scene files: "
+        "docs/scene-format.md)",
+        "tumble"};
+    app.set_version_flag("--version", std::string("tumble ") + TUMBLE_VERSION);
+    app.require_subcommand(1);
+    CLI::App* scenes = app.add_subcommand("scenes", "List the built-in scenes, one per line");
+    CLI::App* run = app.add_subcommand("run", "Run a built-in scene or a scene file");
+
+    std::string scene;
+    double time = 0, dt = 0, recordRate = -1;
+    int iterations = 0;
+    std::vector<std::string> sets;
+    std::vector<int> trace;
+    RunOptions options;
+    run->add_option("scene", scene, "A built-in scene name (tumble scenes) or a FILE.json")
+        ->required();
+    run->add_option("--time", time, "Simulated time T (s), instead of the scene's duration");
+    run->add_option("--dt", dt, "Time step H (s), instead of world.timeStep");
+    run->add_option("--iterations", iterations,
+                    "PGS iterations K, instead of world.solver.iterations");
+    run->add_option("--set", sets,
+                    "Override a scene value by its dotted path: key=value "
+                    "(e.g. world.solver.iterations=20); repeatable")
+        ->expected(1)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    run->add_option("--record", options.record, "Write trajectories as CSV to FILE");
+    run->add_option("--record-rate", recordRate,
+                    "Samples per second (Hz) for --record; "
+                    "default: every step");
+    run->add_option("--summary", options.summary, "Write the summary as JSON to FILE");
+    run->add_option("--picture", options.picture, "Draw start, middle and end to FILE.svg");
+    run->add_option("--view", options.view, "Picture view: side, top or front (default side)");
+    run->add_option("--trace", trace, "Body indices whose trajectories the picture draws (i,j)")
+        ->delimiter(',');
+    run->add_flag("--quiet,-q", options.quiet, "Print nothing but errors");
+
+    std::vector<const char*> argv;
+    for (const std::string& a : args)
+        argv.push_back(a.c_str());
+    try {
+        app.parse(static_cast<int>(argv.size()), argv.data());
+    } catch (const CLI::ParseError& e) {
+        const int status = app.exit(e, out, err);
+        return status == 0 ? 0 : 2;
+    }
+    const std::string directory = sceneDirectory(args.empty() ? "" : args[0]);
+    if (*scenes)
+        return listScenes(directory, out, err);
+
+    try {
+        // The command-line shortcuts are overrides like --set, applied last so they win.
+        if (run->count("--dt") != 0)
+            sets.push_back("world.timeStep=" + number(dt));
+        if (run->count("--iterations") != 0)
+            sets.push_back("world.solver.iterations=" + std::to_string(iterations));
+        if (run->count("--time") != 0)
+            sets.push_back("duration=" + number(time));
+        const Scene loaded = loadScene(scene, sets, directory);
+        const OutputSpec& defaults = loaded.outputs;
+        if (options.record.empty())
+            options.record = defaults.record;
+        options.recordRate = recordRate >= 0 ? recordRate : defaults.recordRate;
+        if (options.summary.empty())
+            options.summary = defaults.summary;
+        if (options.picture.empty())
+            options.picture = defaults.picture;
+        if (run->count("--view") == 0)
+            options.view = defaults.view;
+        options.trace = run->count("--trace") != 0 ? trace : defaults.trace;
+        options.terminal = terminal;
+        if (recordRate < 0 && run->count("--record-rate") != 0)
+            fail("--record-rate = ", recordRate, " must be >= 0");
+        return runScene(loaded, options, out, err);
+    } catch (const InvalidArgument& e) {
+        err << "tumble: error: " << e.what() << "\n";
+        return 2;
+    }
+}
+
+}  // namespace tumble::cli

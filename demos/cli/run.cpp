@@ -1,0 +1,245 @@
+// The headless step loop. Output files are opened before the first step so that a bad path is
+// bad input (status 2) rather than a lost run; the summary and picture are written at the end,
+// also after a failed step, because a failure is exactly when a person wants to look.
+
+#include "run.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <ostream>
+
+#include "svg.h"
+
+namespace tumble::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::unique_ptr<std::ofstream> openOutput(const std::string& path, const char* what) {
+    if (path.empty())
+        return nullptr;
+    auto file = std::make_unique<std::ofstream>(path);
+    if (!*file)
+        fail(what, " file \"", path, "\" cannot be written");
+    return file;
+}
+
+void writeCsvHeader(std::ostream& csv) {
+    csv << "time,body,name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
+}
+
+void writeCsvRows(std::ostream& csv, const Scene& scene, const BuiltScene& built) {
+    const World& w = built.world;
+    char line[512];
+    for (std::size_t i = 0; i < built.bodies.size(); ++i) {
+        const BodyId b = built.bodies[i];
+        if (w.bodyType(b) == BodyType::Static)
+            continue;
+        const Vec3 p = w.position(b);
+        const Quat q = w.orientation(b);
+        const Vec3 v = w.linearVelocity(b);
+        const Vec3 a = w.angularVelocity(b);
+        std::snprintf(line, sizeof line,
+                      "%.6f,%zu,%s,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,"
+                      "%.9g\n",
+                      w.time(), i, scene.bodies[i].name.c_str(), p.x(), p.y(), p.z(), q.w(), q.x(),
+                      q.y(), q.z(), v.x(), v.y(), v.z(), a.x(), a.y(), a.z());
+        csv << line;
+    }
+}
+
+/// "[#####.....]  45%  t = 1.35 s" on one terminal line, redrawn in place.
+class Progress {
+public:
+    Progress(bool enabled, Real duration) : enabled_(enabled), duration_(duration) {}
+    void update(Real time, double elapsed) {
+        // Only runs long enough to wait for (> ~2 s expected) get a bar, redrawn at 10 Hz.
+        if (!enabled_ || elapsed < 0.5 || elapsed < lastDraw_ + 0.1)
+            return;
+        const double fraction = std::clamp(time / duration_, 0.0, 1.0);
+        if (!shown_ && elapsed / std::max(fraction, 1e-9) < 2)
+            return;
+        shown_ = true;
+        lastDraw_ = elapsed;
+        const int filled = static_cast<int>(fraction * 30);
+        std::printf("\r[%s%s] %3d%%  t = %.2f s", std::string(filled, '#').c_str(),
+                    std::string(30 - filled, '.').c_str(), static_cast<int>(fraction * 100), time);
+        std::fflush(stdout);
+    }
+    void clear() {
+        if (shown_) {
+            std::printf("\r\033[K");
+            std::fflush(stdout);
+        }
+    }
+
+private:
+    bool enabled_;
+    Real duration_;
+    bool shown_ = false;
+    double lastDraw_ = 0;
+};
+
+void printSummary(std::ostream& out, const Summary& s) {
+    char buf[160];
+    auto row = [&](const char* name, const char* fmt, auto value) {
+        std::snprintf(buf, sizeof buf, fmt, value);
+        out << "  " << name << std::string(24 - std::string(name).size(), ' ') << buf << "\n";
+    };
+    out << "scene " << s.scene << ": " << s.status << "\n";
+    row("steps", "%llu", static_cast<unsigned long long>(s.steps));
+    row("simulated time (s)", "%.4g", s.simulatedTime);
+    row("wall time (s)", "%.4g", s.wallTime);
+    row("real-time factor", "%.4g", s.realTimeFactor);
+    row("bodies", "%d", s.bodies);
+    row("asleep at the end", "%d", s.bodiesAsleep);
+    std::snprintf(buf, sizeof buf, "  %-24s%12s %12s %12s\n", "energy (J)", "kinetic", "potential",
+                  "total");
+    out << buf;
+    for (const auto& [label, e] : {std::pair{"  start", s.start}, std::pair{"  end", s.end}}) {
+        std::snprintf(buf, sizeof buf, "  %-24s%12.5g %12.5g %12.5g\n", label, e.kinetic,
+                      e.potential, e.total());
+        out << buf;
+    }
+    row("deepest penetration (m)", "%.3g", s.deepestPenetration);
+    row("last residual (m/s)", "%.3g", s.lastResidual);
+}
+
+}  // namespace
+
+Energy energyOf(const BuiltScene& built) {
+    const World& w = built.world;
+    Energy e;
+    e.kinetic = w.kineticEnergy();
+    const Vec3 g = w.settings().gravity;
+    for (std::size_t i = 0; i < built.bodies.size(); ++i) {
+        const BodyId b = built.bodies[i];
+        if (w.bodyType(b) == BodyType::Dynamic)
+            e.potential -=
+                w.massProperties(b).mass * built.gravityScale[i] * g.dot(w.centerOfMass(b));
+    }
+    return e;
+}
+
+std::string summaryJson(const Summary& s) {
+    auto energy = [](const Energy& e) {
+        return nlohmann::ordered_json{
+            {"kinetic", e.kinetic}, {"potential", e.potential}, {"total", e.total()}};
+    };
+    nlohmann::ordered_json j{{"scene", s.scene},
+                             {"status", s.status},
+                             {"steps", s.steps},
+                             {"timeStep", s.timeStep},
+                             {"simulatedTime", s.simulatedTime},
+                             {"wallTime", s.wallTime},
+                             {"realTimeFactor", s.realTimeFactor},
+                             {"bodies", s.bodies},
+                             {"bodiesAsleep", s.bodiesAsleep},
+                             {"energy", {{"start", energy(s.start)}, {"end", energy(s.end)}}},
+                             {"deepestPenetration", s.deepestPenetration},
+                             {"lastSolverResidual", s.lastResidual},
+                             {"lastSolverIterations", s.lastIterations}};
+    if (s.failedBody >= 0)
+        j["failedBody"] = s.failedBody;
+    return j.dump(2) + "\n";
+}
+
+int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, std::ostream& err,
+             Summary* result) {
+    for (const int t : options.trace) {
+        if (t < 0 || t >= static_cast<int>(scene.bodies.size()))
+            fail("--trace ", t, ": the scene has bodies 0 to ", scene.bodies.size() - 1);
+    }
+    const View view = parseView(options.view);
+    BuiltScene built = buildScene(scene);
+    World& world = built.world;
+    // Every output is opened before the first step: a bad path is bad input, not a lost run.
+    auto csv = openOutput(options.record, "record");
+    auto summaryFile = openOutput(options.summary, "summary");
+    auto pictureFile = openOutput(options.picture, "picture");
+
+    Summary s;
+    s.scene = scene.name;
+    s.timeStep = world.settings().timeStep;
+    s.bodies = static_cast<int>(built.bodies.size());
+    s.start = energyOf(built);
+    const auto steps = static_cast<std::uint64_t>(std::ceil(scene.duration / s.timeStep - 1e-9));
+    SvgPicture picture(view,
+                       scene.name + (scene.description.empty() ? "" : ": " + scene.description));
+    const bool drawing = pictureFile != nullptr;
+    const std::uint64_t traceStride = std::max<std::uint64_t>(1, steps / 1000);
+    auto sample = [&](std::uint64_t step) {
+        if (!drawing)
+            return;
+        if (step == 0 || step == steps / 2 || step == steps)
+            picture.addPanel(world, built.shapes, world.time());
+        if (step % traceStride == 0 || step == steps) {
+            for (const int t : options.trace)
+                picture.addTracePoint(t, world.time(), world.centerOfMass(built.bodies[t]));
+        }
+    };
+    if (csv) {
+        writeCsvHeader(*csv);
+        writeCsvRows(*csv, scene, built);
+    }
+    const Real recordPeriod = options.recordRate > 0 ? 1 / options.recordRate : 0;
+    Real nextRecord = recordPeriod;
+    sample(0);
+
+    Progress progress(options.terminal && !options.quiet, scene.duration);
+    const auto begin = Clock::now();
+    for (std::uint64_t i = 1; i <= steps; ++i) {
+        const StepStatus status = world.step();
+        if (!status.ok()) {
+            s.status = "non-finite state";
+            for (std::size_t b = 0; b < built.bodies.size(); ++b) {
+                if (built.bodies[b] == status.body)
+                    s.failedBody = static_cast<int>(b);
+            }
+            break;
+        }
+        s.steps = i;
+        const SolverStats& stats = world.solverStats();
+        s.deepestPenetration = std::max(s.deepestPenetration, stats.deepestPenetration);
+        if (csv && world.time() >= nextRecord - 1e-9 * s.timeStep) {
+            writeCsvRows(*csv, scene, built);
+            nextRecord += recordPeriod;
+        }
+        sample(i);
+        progress.update(world.time(), std::chrono::duration<double>(Clock::now() - begin).count());
+    }
+    progress.clear();
+    s.wallTime = std::chrono::duration<double>(Clock::now() - begin).count();
+    s.simulatedTime = world.time();
+    s.realTimeFactor = s.wallTime > 0 ? s.simulatedTime / s.wallTime : 0;
+    s.end = energyOf(built);
+    s.lastResidual = world.solverStats().maxResidual;
+    s.lastIterations = world.solverStats().iterations;
+    for (const BodyId b : built.bodies) {
+        if (world.bodyType(b) == BodyType::Dynamic && !world.isAwake(b))
+            ++s.bodiesAsleep;
+    }
+    if (s.status != "ok" && drawing)
+        picture.addPanel(world, built.shapes, world.time());
+    if (summaryFile)
+        *summaryFile << summaryJson(s);
+    if (pictureFile)
+        *pictureFile << picture.render();
+    if (!options.quiet)
+        printSummary(out, s);
+    if (result != nullptr)
+        *result = s;
+    if (s.status != "ok") {
+        err << "tumble: step " << s.steps + 1 << " failed: " << s.status << " (body "
+            << s.failedBody << ")\n";
+        return 1;
+    }
+    return 0;
+}
+
+}  // namespace tumble::cli

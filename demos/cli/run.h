@@ -1,0 +1,61 @@
+#pragma once
+/// Running a scene headless: the step loop, the summary, CSV trajectories and the picture.
+
+#include <cstdint>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "scene.h"
+
+namespace tumble::cli {
+
+/// Where the outputs go (the scene's "outputs" merged with the command line).
+struct RunOptions {
+    std::string record;   ///< CSV file ("" = none)
+    Real recordRate = 0;  ///< samples per second (Hz); 0 = every step
+    std::string summary;  ///< JSON file ("" = none)
+    std::string picture;  ///< SVG file ("" = none)
+    std::string view = "side";
+    std::vector<int> trace;  ///< body indices traced in the picture
+    bool quiet = false;      ///< no table, no progress bar
+    bool terminal = false;   ///< stdout is a terminal: a progress bar for long runs
+};
+
+/// Energy of the dynamic bodies (J). Potential is -m g.c with each body's gravity scale.
+struct Energy {
+    Real kinetic = 0;
+    Real potential = 0;
+    Real total() const { return kinetic + potential; }
+};
+
+struct Summary {
+    std::string scene;
+    std::string status = "ok";  ///< "ok" or what failed
+    int failedBody = -1;        ///< scene index of the body a failed step named
+    std::uint64_t steps = 0;
+    Real timeStep = 0;          ///< (s)
+    Real simulatedTime = 0;     ///< (s)
+    double wallTime = 0;        ///< in the step loop (s)
+    double realTimeFactor = 0;  ///< simulated time / wall time
+    int bodies = 0;
+    int bodiesAsleep = 0;  ///< dynamic bodies asleep at the end
+    Energy start, end;
+    Real deepestPenetration = 0;  ///< max over the run of the solver's deepest penetration (m)
+    Real lastResidual = 0;        ///< complementarity residual of the last step (m/s)
+    int lastIterations = 0;
+};
+
+Energy energyOf(const BuiltScene& built);
+
+/// Runs `scene` for scene.duration, printing the summary table to `out` (unless quiet) and a
+/// failed step to `err`. Returns 0, or 1 when a step failed (the outputs are still
+/// written, the summary saying what failed). Output files that cannot be opened are refused
+/// (InvalidArgument) before the first step.
+int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, std::ostream& err,
+             Summary* result = nullptr);
+
+/// The summary as JSON text.
+std::string summaryJson(const Summary& s);
+
+}  // namespace tumble::cli

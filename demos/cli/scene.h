@@ -1,0 +1,76 @@
+#pragma once
+/// A scene: what a scene file describes (docs/scene-format.md), parsed and checked, and the world
+/// built from it. Loading refuses a bad file with an InvalidArgument naming the JSON path, before
+/// anything is built or written.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "json_reader.h"
+#include "tumble/tumble.h"
+
+namespace tumble::cli {
+
+/// One body of a scene, from the "bodies" list or from a generator.
+struct BodySpec {
+    std::string name;  ///< "ball", or "stack[3]" for a generated body
+    std::string path;  ///< JSON path, for messages: "bodies[2]", "generators[0]"
+    BodyDef def;       ///< pose, velocities, damping, type
+    std::vector<ShapeDef> shapes;
+    std::optional<Real> mass;  ///< (kg) scales the shapes' mass and inertia to this
+};
+
+/// The scene's default outputs (each overridden by the command line).
+struct OutputSpec {
+    std::string record;   ///< CSV trajectories ("" = none)
+    Real recordRate = 0;  ///< samples per second (Hz); 0 = every step
+    std::string summary;  ///< JSON summary ("" = none)
+    std::string picture;  ///< SVG picture ("" = none)
+    std::string view = "side";
+    std::vector<int> trace;  ///< body indices whose trajectories the picture draws
+};
+
+struct Scene {
+    std::string name;  ///< file stem or built-in name
+    std::string description;
+    std::string source;  ///< the file it came from, for messages
+    WorldDef world;
+    Real duration = 5;  ///< simulated time (s), > 0
+    std::vector<BodySpec> bodies;
+    OutputSpec outputs;
+};
+
+/// A scene made real: the world and the ids of its bodies and shapes in scene order.
+struct BuiltScene {
+    World world;
+    std::vector<BodyId> bodies;      ///< bodies[i] is scene.bodies[i]
+    std::vector<ShapeId> shapes;     ///< every shape, grouped by body
+    std::vector<Real> gravityScale;  ///< per body, for the potential energy
+};
+
+/// Parses a scene document (already overridden). `name` names it in messages.
+Scene parseScene(const Json& document, const std::string& name);
+
+/// Reads a JSON file; a syntax error names the file, line and column.
+Json readJsonFile(const std::string& path);
+
+/// Applies "dotted.path=value" to a document: the value is parsed as JSON when it can be
+/// (numbers, true, [1,2,3]) and taken as a string otherwise; numeric segments index arrays;
+/// missing objects on the way are created (the strict parser then refuses unknown keys).
+void applyOverride(Json& document, const std::string& assignment);
+
+/// The directory of the built-in scenes: $TUMBLE_SCENE_DIR, else scenes/ or ../share/tumble/scenes
+/// beside the executable (`argv0`), else the source tree's demos/scenes.
+std::string sceneDirectory(const std::string& argv0 = "");
+/// Built-in scene names, sorted.
+std::vector<std::string> builtinScenes(const std::string& directory);
+
+/// Resolves a built-in name or a file path, reads it, applies the overrides and parses it.
+Scene loadScene(const std::string& nameOrFile, const std::vector<std::string>& overrides,
+                const std::string& directory);
+
+/// Creates the world, bodies and shapes. World refusals are re-thrown with the body's path.
+BuiltScene buildScene(const Scene& scene);
+
+}  // namespace tumble::cli

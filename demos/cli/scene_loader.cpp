@@ -1,0 +1,365 @@
+// Scene files -> Scene. The parse is complete before anything is built: every value is read
+// through JsonObject, which names the JSON path of whatever it refuses.
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
+
+#include "scene_parts.h"
+
+namespace tumble::cli {
+namespace {
+
+std::string indexPath(const std::string& path, std::size_t i) {
+    return path + "[" + std::to_string(i) + "]";
+}
+
+SolverSettings parseSolver(JsonObject o) {
+    SolverSettings s;
+    s.iterations = o.integer("iterations", s.iterations, 1);
+    s.relaxIterations = o.integer("relaxIterations", s.relaxIterations, 0);
+    s.tolerance = o.positive("tolerance", s.tolerance, true);
+    s.relaxation = o.number("relaxation", s.relaxation);
+    const std::string friction = o.choice("friction", "coupled", {"coupled", "box"});
+    s.friction = friction == "box" ? FrictionModel::Box : FrictionModel::Coupled;
+    const std::string stab =
+        o.choice("stabilisation", "split-impulse", {"split-impulse", "baumgarte"});
+    s.stabilisation = stab == "baumgarte" ? Stabilisation::Baumgarte : Stabilisation::SplitImpulse;
+    s.baumgarte = o.number("baumgarte", s.baumgarte);
+    s.splitImpulseFactor = o.number("splitImpulseFactor", s.splitImpulseFactor);
+    s.slop = o.positive("slop", s.slop, true);
+    s.restitutionThreshold = o.positive("restitutionThreshold", s.restitutionThreshold, true);
+    s.warmStart = o.boolean("warmStart", s.warmStart);
+    o.finish();
+    try {
+        checkSolverSettings(s);
+    } catch (const InvalidArgument& e) {
+        failAt(o.path(), e.what());
+    }
+    return s;
+}
+
+WorldDef parseWorld(JsonObject o) {
+    WorldDef w;
+    w.timeStep = o.positive("timeStep", w.timeStep);
+    w.gravity = o.vec3("gravity", w.gravity);
+    w.contactMargin = o.positive("contactMargin", w.contactMargin, true);
+    w.aabbMargin = o.positive("aabbMargin", w.aabbMargin, true);
+    w.solver = parseSolver(o.object("solver"));
+    JsonObject sleep = o.object("sleep");
+    w.enableSleep = sleep.boolean("enabled", w.enableSleep);
+    w.linearSleepVelocity = sleep.positive("linearVelocity", w.linearSleepVelocity, true);
+    w.angularSleepVelocity = sleep.positive("angularVelocity", w.angularSleepVelocity, true);
+    w.timeToSleep = sleep.positive("timeToSleep", w.timeToSleep);
+    sleep.finish();
+    o.finish();
+    return w;
+}
+
+Shape parseGeometry(JsonObject& o, const std::string& type) {
+    if (type == "sphere")
+        return Sphere{o.positive("radius", Sphere{}.radius)};
+    if (type == "box") {
+        const Vec3 h = o.vec3("halfExtents", Box{}.halfExtents);
+        if ((h.array() <= 0).any())
+            failAt(o.pathOf("halfExtents"), "every half extent must be > 0 (got [", h.x(), ", ",
+                   h.y(), ", ", h.z(), "])");
+        return Box{h};
+    }
+    if (type == "capsule")
+        return Capsule{o.positive("radius", Capsule{}.radius),
+                       o.positive("halfLength", Capsule{}.halfLength, true)};
+    if (type == "cylinder")
+        return Cylinder{o.positive("radius", Cylinder{}.radius),
+                        o.positive("halfLength", Cylinder{}.halfLength)};
+    if (type == "half-space") {
+        const Vec3 n = o.vec3("normal", Vec3::UnitZ());
+        if (n.norm() < 1e-12)
+            failAt(o.pathOf("normal"), "must not be zero");
+        return HalfSpace{n.normalized(), o.number("offset", 0)};
+    }
+    // hull
+    const Json* points = o.find("points");
+    if (points == nullptr || !points->is_array())
+        failAt(o.pathOf("points"), "expected an array of [x, y, z] points");
+    std::vector<Vec3> cloud;
+    for (std::size_t i = 0; i < points->size(); ++i)
+        cloud.push_back(readVec3((*points)[i], indexPath(o.pathOf("points"), i)));
+    try {
+        return ConvexHull::fromPoints(cloud);
+    } catch (const InvalidArgument& e) {
+        failAt(o.pathOf("points"), e.what());
+    }
+}
+
+}  // namespace
+
+ShapeDef parseShape(const Json& value, const std::string& path, const Materials& materials) {
+    JsonObject o(value, path);
+    if (!o.has("type"))
+        failAt(o.pathOf("type"), "is required");
+    const std::string type =
+        o.choice("type", "", {"sphere", "box", "capsule", "cylinder", "half-space", "hull"});
+    ShapeDef def;
+    def.geometry = parseGeometry(o, type);
+    def.localPose.position = o.vec3("position", Vec3::Zero());
+    def.localPose.rotation = o.orientation("orientation");
+    def.material = materialAt(o, "material", materials);
+    o.finish();
+    return def;
+}
+
+namespace {
+
+BodySpec parseBody(const Json& value, const std::string& path, std::size_t index,
+                   const Materials& materials) {
+    JsonObject o(value, path);
+    BodySpec b;
+    b.path = path;
+    b.name = o.string("name", "body" + std::to_string(index));
+    const std::string type = o.choice("type", "dynamic", {"dynamic", "static", "kinematic"});
+    b.def.type = type == "static"      ? BodyType::Static
+                 : type == "kinematic" ? BodyType::Kinematic
+                                       : BodyType::Dynamic;
+    b.def.position = o.vec3("position", Vec3::Zero());
+    b.def.orientation = o.orientation("orientation");
+    b.def.linearVelocity = o.vec3("linearVelocity", Vec3::Zero());
+    b.def.angularVelocity = o.vec3("angularVelocity", Vec3::Zero());
+    b.def.linearDamping = o.positive("linearDamping", 0, true);
+    b.def.angularDamping = o.positive("angularDamping", 0, true);
+    b.def.gravityScale = o.number("gravityScale", 1);
+    b.def.allowSleep = o.boolean("allowSleep", true);
+    b.def.awake = o.boolean("awake", true);
+    if (o.has("mass")) {
+        b.mass = o.positive("mass", 1);
+        if (b.def.type != BodyType::Dynamic)
+            failAt(o.pathOf("mass"), "only a dynamic body has a mass");
+    }
+    if (const Json* shapes = o.find("shapes")) {
+        if (!shapes->is_array())
+            failAt(o.pathOf("shapes"), "expected an array, got ", typeName(*shapes));
+        for (std::size_t i = 0; i < shapes->size(); ++i)
+            b.shapes.push_back(
+                parseShape((*shapes)[i], indexPath(o.pathOf("shapes"), i), materials));
+    }
+    if (b.mass && b.shapes.empty())
+        failAt(o.pathOf("mass"), "needs shapes to take its inertia from");
+    o.finish();
+    return b;
+}
+
+OutputSpec parseOutputs(JsonObject o, std::size_t bodyCount) {
+    OutputSpec out;
+    out.record = o.string("record", "");
+    out.recordRate = o.positive("recordRate", 0, true);
+    out.summary = o.string("summary", "");
+    out.picture = o.string("picture", "");
+    out.view = o.choice("view", "side", {"side", "top", "front"});
+    if (const Json* trace = o.find("trace")) {
+        if (!trace->is_array())
+            failAt(o.pathOf("trace"), "expected an array of body indices");
+        for (std::size_t i = 0; i < trace->size(); ++i) {
+            const Json& t = (*trace)[i];
+            if (!t.is_number_integer() || t.get<long long>() < 0 ||
+                t.get<long long>() >= static_cast<long long>(bodyCount))
+                failAt(indexPath(o.pathOf("trace"), i), "expected a body index in [0, ", bodyCount,
+                       ")");
+            out.trace.push_back(t.get<int>());
+        }
+    }
+    o.finish();
+    return out;
+}
+
+Materials parseMaterials(JsonObject o, const Json& document) {
+    Materials materials;
+    if (const auto it = document.find("materials"); it != document.end()) {
+        for (const auto& [name, value] : it->items())
+            materials[name] = parseMaterial(value, o.pathOf(name));
+        for (const auto& [name, value] : it->items())
+            o.has(name);
+    }
+    o.finish();
+    return materials;
+}
+
+}  // namespace
+
+Scene parseScene(const Json& document, const std::string& name) {
+    JsonObject root(document, "");
+    root.reserve({"joints", "springs", "nets"});
+    Scene scene;
+    scene.name = name;
+    scene.description = root.string("description", "");
+    scene.duration = root.positive("duration", scene.duration);
+    scene.world = parseWorld(root.object("world"));
+    const Materials materials = parseMaterials(root.object("materials"), document);
+    if (const Json* bodies = root.find("bodies")) {
+        if (!bodies->is_array())
+            failAt("bodies", "expected an array, got ", typeName(*bodies));
+        for (std::size_t i = 0; i < bodies->size(); ++i)
+            scene.bodies.push_back(
+                parseBody((*bodies)[i], indexPath("bodies", i), scene.bodies.size(), materials));
+    }
+    if (const Json* generators = root.find("generators")) {
+        if (!generators->is_array())
+            failAt("generators", "expected an array, got ", typeName(*generators));
+        for (std::size_t i = 0; i < generators->size(); ++i)
+            parseGenerator((*generators)[i], indexPath("generators", i), materials, scene.bodies);
+    }
+    scene.outputs = parseOutputs(root.object("outputs"), scene.bodies.size());
+    root.finish();
+    return scene;
+}
+
+Json readJsonFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        fail(path, ": cannot open the file");
+    std::stringstream buffer;
+    buffer << in.rdbuf();
+    const std::string text = buffer.str();
+    try {
+        return Json::parse(text);
+    } catch (const Json::parse_error& e) {
+        // nlohmann gives a byte offset (1-based, one past the offending byte); people want lines.
+        const std::size_t end = std::min<std::size_t>(e.byte == 0 ? 0 : e.byte - 1, text.size());
+        const auto line = 1 + std::count(text.begin(), text.begin() + end, '\n');
+        const std::size_t lineStart = text.rfind('\n', end == 0 ? 0 : end - 1);
+        const std::size_t column = lineStart == std::string::npos ? end + 1 : end - lineStart;
+        // Drop nlohmann's "[json.exception...] parse error at line L, column C: " prefix.
+        std::string what = e.what();
+        if (const std::size_t at = what.find("parse error"); at != std::string::npos) {
+            const std::size_t colon = what.find(": ", at);
+            what = what.substr(colon == std::string::npos ? at : colon + 2);
+        }
+        fail(path, ":", line, ":", column, ": JSON syntax error: ", what);
+    }
+}
+
+void applyOverride(Json& document, const std::string& assignment) {
+    const std::size_t eq = assignment.find('=');
+    if (eq == std::string::npos || eq == 0)
+        fail("--set ", assignment, ": expected key=value (e.g. world.solver.iterations=20)");
+    const std::string key = assignment.substr(0, eq);
+    const std::string text = assignment.substr(eq + 1);
+    Json value = Json::parse(text, nullptr, false);
+    if (value.is_discarded())
+        value = text;
+    Json* at = &document;
+    std::stringstream segments(key);
+    std::string segment;
+    std::vector<std::string> parts;
+    while (std::getline(segments, segment, '.'))
+        parts.push_back(segment);
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+        const std::string& part = parts[i];
+        const bool numeric = !part.empty() && std::all_of(part.begin(), part.end(), ::isdigit);
+        if (at->is_array()) {
+            if (!numeric || std::stoul(part) >= at->size())
+                fail("--set ", key, ": \"", part, "\" is not an index of an array of ", at->size());
+            at = &(*at)[std::stoul(part)];
+        } else {
+            if (part.empty())
+                fail("--set ", key, ": empty key segment");
+            if (at->is_null())
+                *at = Json::object();
+            if (!at->is_object())
+                fail("--set ", key, ": \"", part, "\" is inside ", typeName(*at));
+            at = &(*at)[part];
+        }
+        if (i + 1 == parts.size())
+            *at = value;
+    }
+}
+
+std::string sceneDirectory(const std::string& argv0) {
+    namespace fs = std::filesystem;
+    if (const char* env = std::getenv("TUMBLE_SCENE_DIR"))
+        return env;
+    if (!argv0.empty()) {
+        std::error_code ec;
+        const fs::path exe = fs::canonical(fs::path(argv0), ec);
+        if (!ec) {
+            for (const fs::path& p : {exe.parent_path() / "scenes",
+                                      exe.parent_path() / ".." / "share" / "tumble" / "scenes"})
+                if (fs::is_directory(p))
+                    return p.string();
+        }
+    }
+    return TUMBLE_SOURCE_SCENE_DIR;
+}
+
+std::vector<std::string> builtinScenes(const std::string& directory) {
+    namespace fs = std::filesystem;
+    std::vector<std::string> names;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(directory, ec)) {
+        if (entry.path().extension() == ".json")
+            names.push_back(entry.path().stem().string());
+    }
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+Scene loadScene(const std::string& nameOrFile, const std::vector<std::string>& overrides,
+                const std::string& directory) {
+    namespace fs = std::filesystem;
+    const bool isFile =
+        nameOrFile.find('/') != std::string::npos || fs::path(nameOrFile).extension() == ".json";
+    std::string path = nameOrFile;
+    if (!isFile) {
+        path = (fs::path(directory) / (nameOrFile + ".json")).string();
+        if (!fs::exists(path)) {
+            std::string list;
+            for (const std::string& n : builtinScenes(directory))
+                list += (list.empty() ? "" : ", ") + n;
+            fail("unknown scene \"", nameOrFile, "\" (built-in scenes: ", list,
+                 "; a file must end in .json)");
+        }
+    }
+    Json document = readJsonFile(path);
+    for (const std::string& o : overrides)
+        applyOverride(document, o);
+    try {
+        Scene scene = parseScene(document, fs::path(path).stem().string());
+        scene.source = path;
+        return scene;
+    } catch (const InvalidArgument& e) {
+        fail(path, ": ", e.what());
+    }
+}
+
+BuiltScene buildScene(const Scene& scene) {
+    std::optional<World> made;
+    try {
+        made.emplace(scene.world);
+    } catch (const InvalidArgument& e) {
+        fail(scene.source, ": world: ", e.what());
+    }
+    BuiltScene built{std::move(*made), {}, {}, {}};
+    World& world = built.world;
+    for (const BodySpec& spec : scene.bodies) {
+        try {
+            const BodyId body = world.createBody(spec.def);
+            for (const ShapeDef& shape : spec.shapes)
+                built.shapes.push_back(world.createShape(body, shape));
+            if (spec.mass) {
+                MassProperties mass = world.massProperties(body);
+                const Real scale = *spec.mass / mass.mass;
+                mass.mass = *spec.mass;
+                mass.inertia *= scale;
+                world.setMassProperties(body, mass);
+            }
+            built.bodies.push_back(body);
+            built.gravityScale.push_back(spec.def.gravityScale);
+        } catch (const InvalidArgument& e) {
+            fail(scene.source, ": ", spec.path, " (\"", spec.name, "\"): ", e.what());
+        }
+    }
+    return built;
+}
+
+}  // namespace tumble::cli

@@ -1,0 +1,280 @@
+// The `tumble` command run in-process: built-in scenes, the summary, CSV, the picture, and the
+// refusal of bad input (status 2, a message naming the JSON path, nothing written).
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "command.h"
+#include "scene.h"
+
+namespace fs = std::filesystem;
+using tumble::cli::runCommand;
+
+namespace {
+
+struct Outcome {
+    int status = -1;
+    std::string out, err;
+};
+
+Outcome tumbleRun(std::vector<std::string> args) {
+    args.insert(args.begin(), "tumble");
+    std::ostringstream out, err;
+    Outcome o;
+    o.status = runCommand(args, out, err);
+    o.out = out.str();
+    o.err = err.str();
+    return o;
+}
+
+/// A fresh scratch directory per test.
+fs::path scratch(const std::string& name) {
+    const fs::path dir = fs::temp_directory_path() / ("tumble_cli_test_" + name);
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+std::string slurp(const fs::path& path) {
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+const std::string kFixtures = TUMBLE_CLI_TEST_DIR;
+
+}  // namespace
+
+TEST(Command, ListsEveryBuiltInSceneOnItsOwnLine) {
+    const Outcome o = tumbleRun({"scenes"});
+    ASSERT_EQ(o.status, 0) << o.err;
+    for (const char* name :
+         {"bounce", "stack", "pyramid", "wall", "incline", "table", "cradle", "rain"})
+        EXPECT_NE(("\n" + o.out).find(std::string("\n") + name + " "), std::string::npos) << name;
+}
+
+TEST(Command, HelpAndVersionExitZeroAndUnknownOptionsTwo) {
+    EXPECT_EQ(tumbleRun({"--help"}).status, 0);
+    const Outcome version = tumbleRun({"--version"});
+    EXPECT_EQ(version.status, 0);
+    EXPECT_NE(version.out.find("tumble "), std::string::npos);
+    EXPECT_EQ(tumbleRun({"run", "stack", "--no-such-option"}).status, 2);
+    EXPECT_EQ(tumbleRun({}).status, 2);  // a subcommand is required
+}
+
+TEST(Command, EveryBuiltInSceneRunsHeadless) {
+    const std::string dir = tumble::cli::sceneDirectory();
+    const std::vector<std::string> names = tumble::cli::builtinScenes(dir);
+    ASSERT_GE(names.size(), 8u);
+    for (const std::string& name : names) {
+        const Outcome o = tumbleRun({"run", name, "--time", "0.25", "--quiet"});
+        EXPECT_EQ(o.status, 0) << name << ": " << o.err;
+    }
+}
+
+TEST(Command, StackSummaryHasEveryFieldAndTheStartEnergyOfTheScene) {
+    const fs::path dir = scratch("summary");
+    const fs::path file = dir / "s.json";
+    const Outcome o = tumbleRun({"run", "stack", "--time", "0.5", "--summary", file.string()});
+    ASSERT_EQ(o.status, 0) << o.err;
+    EXPECT_NE(o.out.find("real-time factor"), std::string::npos);
+    const nlohmann::json s = nlohmann::json::parse(slurp(file));
+    for (const char* key : {"scene", "status", "steps", "wallTime", "realTimeFactor", "energy",
+                            "deepestPenetration", "lastSolverResidual", "bodiesAsleep", "bodies"})
+        EXPECT_TRUE(s.contains(key)) << key;
+    EXPECT_EQ(s["status"], "ok");
+    EXPECT_EQ(s["steps"], 30);  // 0.5 s at h = 1/60
+    EXPECT_NEAR(s["simulatedTime"].get<double>(), 0.5, 1e-9);
+    EXPECT_EQ(s["bodies"], 11);
+    // Ten 0.5 m blocks of 500 kg/m^3 (62.5 kg), bottom faces at 0.05 + 0.55 i: centres sum to
+    // 10 * 0.3 + 0.55 * 45 = 27.75 m, so m g sum(z) = 62.5 * 9.81 * 27.75 J; at rest.
+    EXPECT_NEAR(s["energy"]["start"]["potential"].get<double>(), 62.5 * 9.81 * 27.75, 1e-6);
+    EXPECT_EQ(s["energy"]["start"]["kinetic"].get<double>(), 0.0);
+    // Falling blocks lose potential energy and gain kinetic; friction and inelastic impacts
+    // can only take energy away.
+    EXPECT_LT(s["energy"]["end"]["total"].get<double>(),
+              s["energy"]["start"]["total"].get<double>() + 1e-6);
+    EXPECT_GT(s["wallTime"].get<double>(), 0.0);
+}
+
+TEST(Command, SetAndShortcutsOverrideTheScene) {
+    const fs::path dir = scratch("set");
+    const fs::path file = dir / "s.json";
+    ASSERT_EQ(tumbleRun({"run", "stack", "--time", "0.1", "--quiet", "--set",
+                         "world.solver.iterations=3", "--dt", "0.01", "--summary", file.string()})
+                  .status,
+              0);
+    const nlohmann::json s = nlohmann::json::parse(slurp(file));
+    EXPECT_EQ(s["lastSolverIterations"], 3);
+    EXPECT_EQ(s["steps"], 10);
+    EXPECT_DOUBLE_EQ(s["timeStep"].get<double>(), 0.01);
+}
+
+TEST(Command, RecordsTrajectoriesAtTheChosenRate) {
+    const fs::path dir = scratch("record");
+    const fs::path file = dir / "t.csv";
+    ASSERT_EQ(tumbleRun({"run", "bounce", "--time", "0.5", "--quiet", "--record", file.string(),
+                         "--record-rate", "10"})
+                  .status,
+              0);
+    std::istringstream csv(slurp(file));
+    std::string line;
+    std::getline(csv, line);
+    EXPECT_EQ(line, "time,body,name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz");
+    std::vector<std::string> rows;
+    while (std::getline(csv, line))
+        rows.push_back(line);
+    // t = 0, 0.1, ..., 0.5 for the one moving body (the static floor is not recorded).
+    ASSERT_EQ(rows.size(), 6u);
+    EXPECT_EQ(rows.front().rfind("0.000000,0,ball,", 0), 0u);
+    // The ball falls freely for 0.45 s (1 m): z at 0.1 s is 1.0335 - g t^2 / 2 to O(h).
+    double t = 0, x = 0, y = 0, z = 0;
+    std::sscanf(rows[1].c_str(), "%lf,%*d,ball,%lf,%lf,%lf", &t, &x, &y, &z);
+    EXPECT_NEAR(t, 0.1, 1e-9);
+    EXPECT_NEAR(z, 1.0335 - 0.5 * 9.81 * 0.1 * 0.1, 9.81 * 0.1 / 240);
+}
+
+TEST(Command, BounceSceneApexesFallByRestitutionSquared) {
+    // The tennis ball (e = 0.75 on both materials, bottom dropped from 1 m): Newton's law gives
+    // apex k at e^(2k) m. The scene's h = 1/240 and threshold 0.2 m/s keep 6 bounces elastic.
+    const fs::path dir = scratch("bounce");
+    const fs::path file = dir / "t.csv";
+    ASSERT_EQ(tumbleRun({"run", "bounce", "--quiet", "--record", file.string()}).status, 0);
+    std::istringstream csv(slurp(file));
+    std::string line;
+    std::getline(csv, line);
+    std::vector<double> height;
+    while (std::getline(csv, line)) {
+        double t = 0, x = 0, y = 0, z = 0;
+        std::sscanf(line.c_str(), "%lf,%*d,ball,%lf,%lf,%lf", &t, &x, &y, &z);
+        height.push_back(z - 0.0335);
+    }
+    std::vector<double> apexes;
+    for (std::size_t i = 1; i + 1 < height.size(); ++i) {
+        if (height[i] > height[i - 1] && height[i] >= height[i + 1])
+            apexes.push_back(height[i]);
+    }
+    ASSERT_GE(apexes.size(), 6u);
+    const double e2 = 0.75 * 0.75;
+    double expected = 1;
+    for (std::size_t k = 0; k < 6; ++k) {
+        expected *= e2;
+        // Measured 0.5625, 0.3164, 0.1780, 0.1001, 0.0563, 0.0317 m: within 0.1 % of e^(2k).
+        EXPECT_NEAR(apexes[k], expected, 0.01 * expected + 1e-4) << "apex " << k + 1;
+    }
+}
+
+TEST(Command, PictureHasThreePanelsAndTheTrace) {
+    const fs::path dir = scratch("picture");
+    const fs::path file = dir / "p.svg";
+    ASSERT_EQ(tumbleRun({"run", "pyramid", "--time", "0.5", "--quiet", "--picture", file.string(),
+                         "--trace", "1,55", "--view", "front"})
+                  .status,
+              0);
+    const std::string svg = slurp(file);
+    EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+    EXPECT_NE(svg.find("</svg>"), std::string::npos);
+    std::size_t panels = 0;
+    for (std::size_t at = svg.find("t = "); at != std::string::npos; at = svg.find("t = ", at + 1))
+        ++panels;
+    EXPECT_EQ(panels, 3u);
+    EXPECT_NE(svg.find("<polyline"), std::string::npos);
+    EXPECT_NE(svg.find("front view"), std::string::npos);
+    // 55 boxes in each of the 3 panels, plus the ground.
+    std::size_t polygons = 0;
+    for (std::size_t at = svg.find("<polygon"); at != std::string::npos;
+         at = svg.find("<polygon", at + 1))
+        ++polygons;
+    EXPECT_EQ(polygons, 3u * 56u);
+}
+
+TEST(Command, AFailedStepExitsOneAndSaysSoInTheSummary) {
+    const fs::path dir = scratch("unstable");
+    const fs::path file = dir / "s.json";
+    const Outcome o =
+        tumbleRun({"run", kFixtures + "/unstable.json", "--quiet", "--summary", file.string()});
+    EXPECT_EQ(o.status, 1);
+    EXPECT_NE(o.err.find("non-finite"), std::string::npos);
+    const nlohmann::json s = nlohmann::json::parse(slurp(file));
+    EXPECT_EQ(s["status"], "non-finite state");
+    EXPECT_EQ(s["failedBody"], 0);
+}
+
+struct BadFile {
+    const char* file;
+    const char* message;  ///< must appear in the error, JSON path included
+};
+
+class BadInput : public testing::TestWithParam<BadFile> {};
+
+TEST_P(BadInput, IsRefusedWithItsPathStatusTwoAndNothingWritten) {
+    const fs::path dir = scratch(std::string("bad_") + GetParam().file);
+    const fs::path summary = dir / "s.json", picture = dir / "p.svg", record = dir / "r.csv";
+    const Outcome o =
+        tumbleRun({"run", kFixtures + "/bad/" + GetParam().file, "--summary", summary.string(),
+                   "--picture", picture.string(), "--record", record.string()});
+    EXPECT_EQ(o.status, 2);
+    EXPECT_NE(o.err.find(GetParam().message), std::string::npos) << o.err;
+    EXPECT_NE(o.err.find(GetParam().file), std::string::npos) << "names the file: " << o.err;
+    EXPECT_FALSE(fs::exists(summary));
+    EXPECT_FALSE(fs::exists(picture));
+    EXPECT_FALSE(fs::exists(record));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Files, BadInput,
+    testing::Values(
+        BadFile{"syntax.json", "syntax.json:1:44: JSON syntax error"},
+        BadFile{"unknown_key.json", "bodies[0].shapes[0].colour: unknown key"},
+        BadFile{"wrong_type.json", "bodies[0].position: expected an array of 3 numbers"},
+        BadFile{"wrong_type_integer.json", "world.solver.iterations: expected an integer"},
+        BadFile{"negative_mass.json", "bodies[0].mass: must be > 0 (got -1)"},
+        BadFile{"negative_density.json", "materials.rock.density: density = -2500"},
+        BadFile{"negative_friction.json", "materials.ice.friction: friction coefficient mu = -0.1"},
+        BadFile{"zero_box.json", "bodies[1].shapes[0].halfExtents: every half extent must be > 0"},
+        BadFile{"restitution.json",
+                "bodies[0].shapes[0].material.restitution: restitution e = 1.5"},
+        BadFile{"joint.json", "joints: not yet supported"},
+        BadFile{"string_generator.json", "generators[0].type: generator \"string\" is not yet"},
+        BadFile{"missing_material.json", "bodies[0].shapes[0].material: no material named"},
+        BadFile{"dynamic_half_space.json", "bodies[0] (\"a\"): ShapeDef.geometry is a half-space"},
+        BadFile{"bad_choice.json", "world.solver.friction: \"anisotropic\" is not one of"}),
+    [](const testing::TestParamInfo<BadFile>& param) {
+        std::string name = param.param.file;
+        return name.substr(0, name.find('.'));
+    });
+
+TEST(BadCommandLine, IsRefusedWithStatusTwo) {
+    const Outcome unknown = tumbleRun({"run", "no-such-scene"});
+    EXPECT_EQ(unknown.status, 2);
+    EXPECT_NE(unknown.err.find("unknown scene \"no-such-scene\""), std::string::npos);
+    EXPECT_EQ(tumbleRun({"run", "/nonexistent/scene.json"}).status, 2);
+    const Outcome set = tumbleRun({"run", "stack", "--set", "world.solver.iteratons=5"});
+    EXPECT_EQ(set.status, 2);
+    EXPECT_NE(set.err.find("world.solver.iteratons: unknown key"), std::string::npos) << set.err;
+    EXPECT_EQ(tumbleRun({"run", "stack", "--set", "noequals"}).status, 2);
+    EXPECT_EQ(tumbleRun({"run", "stack", "--dt", "-0.1"}).status, 2);
+    EXPECT_EQ(tumbleRun({"run", "stack", "--time", "0"}).status, 2);
+    EXPECT_EQ(tumbleRun({"run", "stack", "--view", "diagonal", "--quiet"}).status, 2);
+    EXPECT_EQ(tumbleRun({"run", "stack", "--trace", "99", "--quiet"}).status, 2);
+    EXPECT_EQ(tumbleRun({"run", "stack", "--summary", "/nonexistent/dir/s.json"}).status, 2);
+}
+
+TEST(Override, WalksObjectsAndArraysAndParsesJsonValues) {
+    tumble::cli::Json doc = tumble::cli::Json::parse(R"({"bodies": [{"position": [0, 0, 1]}]})");
+    tumble::cli::applyOverride(doc, "bodies.0.position=[1,2,3]");
+    tumble::cli::applyOverride(doc, "world.solver.friction=box");
+    tumble::cli::applyOverride(doc, "duration=2.5");
+    EXPECT_EQ(doc["bodies"][0]["position"], tumble::cli::Json::parse("[1,2,3]"));
+    EXPECT_EQ(doc["world"]["solver"]["friction"], "box");
+    EXPECT_EQ(doc["duration"], 2.5);
+    EXPECT_THROW(tumble::cli::applyOverride(doc, "bodies.4.position=[0,0,0]"),
+                 tumble::InvalidArgument);
+}
