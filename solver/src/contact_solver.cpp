@@ -279,9 +279,6 @@ void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
                 p.tangentImpulse = {0, 0};
             if (!settings.warmStart)
                 p.normalImpulse = 0;
-            const Vec3 impulse = p.normalImpulse * c.normal + p.tangentImpulse[0] * c.tangents[0] +
-                                 p.tangentImpulse[1] * c.tangents[1];
-            applyPair(a, b, p, impulse);
         }
         c.normalBlock.setZero();
         for (int i = 0; i < c.pointCount; ++i) {
@@ -292,6 +289,19 @@ void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
                                       p.angularA.dot(q.angularImpulseA) +
                                       p.angularB.dot(q.angularImpulseB);
             }
+        }
+    }
+    // Warm start only once every approach speed is measured: applied point by point above, the
+    // cached impulses of earlier contacts leaked into the approach speeds of later ones, and a
+    // row of touching elastic balls (Newton's cradle) gained energy with every collision.
+    for (ContactConstraint& c : constraints) {
+        SolverBody& a = bodies[c.bodyA];
+        SolverBody& b = bodies[c.bodyB];
+        for (int i = 0; i < c.pointCount; ++i) {
+            const ContactConstraintPoint& p = c.points[i];
+            applyPair(a, b, p,
+                      p.normalImpulse * c.normal + p.tangentImpulse[0] * c.tangents[0] +
+                          p.tangentImpulse[1] * c.tangents[1]);
         }
     }
 }
