@@ -312,6 +312,20 @@ Real penetrationAlong(const PosedCore& a, const PosedCore& b, const Vec3& normal
 void penetrationContact(const PosedCore& a, const PosedCore& b, Vec3 normal, ConvexContact& out) {
     const Real radiusA = a.radius, radiusB = b.radius;
     Real depth = penetrationAlong(a, b, normal);
+    // EPA on two flat faces that barely overlap (cylinders stacked end to end) can return the
+    // opposite axis, along which the overlap is measured the long way through (1.2 m for two
+    // 0.6 m cylinders, where the real overlap was millimetres), and the refinement below cannot
+    // leave it. Any axis gives a valid contact at its exact overlap, so the reverse and the
+    // axis between the centres are tried too and the shallowest kept.
+    const Vec3 between = b.position - a.position;
+    for (const Vec3& candidate :
+         {Vec3(-normal), between.norm() > 0 ? Vec3(between.normalized()) : normal}) {
+        const Real along = penetrationAlong(a, b, candidate);
+        if (along < depth) {
+            depth = along;
+            normal = candidate;
+        }
+    }
     out.pointA = a.support(normal) + radiusA * normal;
     out.pointB = b.support(-normal) - radiusB * normal;
     for (int refinement = 0; refinement < kMaxNormalRefinements; ++refinement) {

@@ -408,6 +408,26 @@ TEST(NarrowphaseRound, SphereBoxOutsideAndInside) {
 
 // --- Other convex shapes on a half-space -------------------------------------------------------
 
+// Two upright cylinders end to end, as a falling one first overlapped a resting one in a
+// simulation (poses recorded from it): libccd's EPA returned the downward axis with a 1.2 m depth
+// (the overlap measured the long way through). The contact must be the shallow one, normal up
+// from A to B, and no deeper than the overlap of the end faces.
+TEST(NarrowphaseConvex, CylindersEndToEndGiveTheShallowAxis) {
+    const Cylinder cylinder{0.2, 0.3};
+    const Transform poseA{
+        Vec3(3.0425533561328604e-05, -5.4099856965131686e-07, 0.29999692841674352),
+        Quat(0.99999999964244313, 6.5505932426274488e-07, 2.6717808593443831e-05,
+             -9.183290702219679e-07)};
+    const Transform poseB{Vec3(0.050063006373822633, -8.5949171430165278e-07, 0.8999942557537437),
+                          Quat(0.99999999964265096, 6.5510122240661041e-07, 2.6717807769644303e-05,
+                               6.5418943194509957e-07)};
+    const Manifold m = collided(cylinder, poseA, cylinder, poseB);
+    ASSERT_GT(m.pointCount, 0);
+    EXPECT_GT(m.normal.z(), 0.999);
+    for (int i = 0; i < m.pointCount; ++i)
+        EXPECT_GT(m.points[i].separation, -1e-3);
+}
+
 TEST(NarrowphaseHalfSpace, CapsuleCylinderAndHull) {
     const Shape ground = HalfSpace{};
     // Capsule lying: both ends; standing: the lower end only.
