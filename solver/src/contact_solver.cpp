@@ -192,6 +192,9 @@ SolverStats ContactSolver::solve(std::span<SolverBody> bodies,
     }
     prepare(bodies, constraints, h, settings);
     prepareSpringRows(bodies, springs, h, settings.warmStart);
+    directSprings_ = settings.springSolve == SpringSolve::Direct && !springs.empty();
+    if (directSprings_)
+        springBlock_.prepare(bodies, springs);
     const bool split = settings.stabilisation == Stabilisation::SplitImpulse;
     const Real bias = split ? settings.splitImpulseFactor : settings.baumgarte;
     stats.iterations =
@@ -217,11 +220,16 @@ SolverStats ContactSolver::solve(std::span<SolverBody> bodies,
 
 int ContactSolver::runSweeps(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                              std::span<SpringRow> springs, const SolverSettings& settings,
-                             Real inverseH, Real bias, int sweeps) const {
+                             Real inverseH, Real bias, int sweeps) {
     for (int sweep = 0; sweep < sweeps;) {
         // Springs first, contacts last: non-penetration matters most. The springs' rows take no
-        // bias, so they are solved the same way in the biased and in the relax sweeps.
-        const Real springChange = solveSpringRows(bodies, springs, settings.relaxation);
+        // bias, so they are solved the same way in the biased and in the relax sweeps. Solved
+        // exactly, they need solving again only when contacts have moved their bodies.
+        Real springChange = 0;
+        if (!directSprings_ || !springBlock_.ready())
+            springChange = solveSpringRows(bodies, springs, settings.relaxation);
+        else if (sweep == 0 || !constraints.empty())
+            springChange = springBlock_.solve(bodies, springs);
         const Real largestChange = std::max(
             springChange, solveVelocitySweep(bodies, constraints, settings, inverseH, bias));
         ++sweep;

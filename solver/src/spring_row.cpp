@@ -9,18 +9,6 @@ namespace {
 // Anchors closer than this have no line to pull along (m).
 constexpr Real kMinimumLength = 1e-12;
 
-void applyRow(SolverBody& a, SolverBody& b, const SpringRow& row, Real lambda) {
-    a.linearVelocity -= (a.inverseMass * lambda) * row.direction;
-    a.angularVelocity -= lambda * row.angularImpulseA;
-    b.linearVelocity += (b.inverseMass * lambda) * row.direction;
-    b.angularVelocity += lambda * row.angularImpulseB;
-}
-
-Real rowSpeed(const SolverBody& a, const SolverBody& b, const SpringRow& row) {
-    return row.direction.dot(b.linearVelocity - a.linearVelocity) +
-           row.angularB.dot(b.angularVelocity) - row.angularA.dot(a.angularVelocity);
-}
-
 }  // namespace
 
 void prepareSpringRows(std::span<SolverBody> bodies, std::span<SpringRow> rows, Real h,
@@ -46,7 +34,7 @@ void prepareSpringRows(std::span<SolverBody> bodies, std::span<SpringRow> rows, 
         row.bias = (row.stiffness / resistance) * (row.length - row.restLength);
         if (!warmStart || (row.tensionOnly && row.impulse > 0))
             row.impulse = 0;
-        applyRow(a, b, row, row.impulse);
+        applySpringImpulse(a, b, row, row.impulse);
     }
 }
 
@@ -57,12 +45,12 @@ Real solveSpringRows(std::span<SolverBody> bodies, std::span<SpringRow> rows, Re
             continue;
         SolverBody& a = bodies[row.bodyA];
         SolverBody& b = bodies[row.bodyB];
-        const Real residual = rowSpeed(a, b, row) + row.bias + row.softness * row.impulse;
+        const Real residual = springRowSpeed(a, b, row) + row.bias + row.softness * row.impulse;
         Real next = row.impulse - relaxation * row.mass * residual;
         if (row.tensionOnly)
             next = std::min<Real>(next, 0);
         const Real delta = next - row.impulse;
-        applyRow(a, b, row, delta);
+        applySpringImpulse(a, b, row, delta);
         row.impulse = next;
         largestChange = std::max(largestChange, std::abs(delta) / row.mass);
     }

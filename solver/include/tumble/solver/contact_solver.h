@@ -38,6 +38,7 @@
 #include <vector>
 
 #include "tumble/solver/solver_body.h"
+#include "tumble/solver/spring_block.h"
 #include "tumble/solver/spring_row.h"
 
 namespace tumble {
@@ -50,6 +51,12 @@ enum class FrictionModel : std::uint8_t {
 enum class Stabilisation : std::uint8_t {
     SplitImpulse,  ///< pseudo-velocities, never in the real velocity (default)
     Baumgarte,     ///< bias k_erp / h * depth in the velocity rows (Bullet's default)
+};
+
+/// How the implicit spring rows are solved (spring_block.h).
+enum class SpringSolve : std::uint8_t {
+    Direct,     ///< all rows at once by a sparse factorisation: implicit Euler at any stiffness
+    Iterative,  ///< Gauss-Seidel next to the contacts: cheaper, wrong when unconverged
 };
 
 struct SolverSettings {
@@ -70,6 +77,7 @@ struct SolverSettings {
     Real restitutionThreshold =
         1;                  ///< approach speed below which contacts are inelastic (m/s), >= 0
     bool warmStart = true;  ///< start from the cached impulses
+    SpringSolve springSolve = SpringSolve::Direct;
 };
 
 /// The two friction directions the solver uses for normal n (unit): orthonormal, right-handed
@@ -166,7 +174,7 @@ private:
     /// Runs up to `sweeps` PGS sweeps with the given bias factor; returns the number run.
     int runSweeps(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                   std::span<SpringRow> springs, const SolverSettings& settings, Real inverseH,
-                  Real bias, int sweeps) const;
+                  Real bias, int sweeps);
     Real solveVelocitySweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                             const SolverSettings& settings, Real inverseH, Real bias) const;
     void solveNormals(SolverBody& a, SolverBody& b, ContactConstraint& c,
@@ -181,6 +189,9 @@ private:
     Real residual(std::span<const SolverBody> bodies,
                   std::span<const ContactConstraint> constraints, const SolverSettings& settings,
                   Real inverseH, Real bias) const;
+
+    SpringBlockSolver springBlock_;
+    bool directSprings_ = false;  ///< this step's springs go through springBlock_
 };
 
 }  // namespace tumble

@@ -47,6 +47,20 @@ struct SpringRow {
     Real bias = 0;                        ///< (beta / h) C (m/s)
 };
 
+/// The row's impulse lambda on its bodies: lambda n on B at its anchor, -lambda n on A.
+inline void applySpringImpulse(SolverBody& a, SolverBody& b, const SpringRow& row, Real lambda) {
+    a.linearVelocity -= (a.inverseMass * lambda) * row.direction;
+    a.angularVelocity -= lambda * row.angularImpulseA;
+    b.linearVelocity += (b.inverseMass * lambda) * row.direction;
+    b.angularVelocity += lambda * row.angularImpulseB;
+}
+
+/// J v: the rate at which the anchors separate (m/s). Needs prepareSpringRows()'s Jacobians.
+inline Real springRowSpeed(const SolverBody& a, const SolverBody& b, const SpringRow& row) {
+    return row.direction.dot(b.linearVelocity - a.linearVelocity) +
+           row.angularB.dot(b.angularVelocity) - row.angularA.dot(a.angularVelocity);
+}
+
 /// Jacobians, softness and effective masses for a step of length h; applies the warm-start
 /// impulses (or zeroes them when !warmStart). A row with k = c = 0, or whose anchors coincide
 /// (no direction), is inactive.

@@ -1,0 +1,317 @@
+#include "tumble/solver/spring_block.h"
+
+#include <Eigen/OrderingMethods>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace tumble {
+namespace {
+
+// Rounds of the tension-only active set at the first solve of a step. A net falling flat settles
+// in one or two; a crumpled one may flip a few threads back and forth, and the later sweeps'
+// clamping then takes over.
+constexpr int kActiveSetRounds = 6;
+
+bool usable(const SpringRow& row) {
+    return row.mass > 0 && row.bodyA != row.bodyB;
+}
+
+}  // namespace
+
+bool SpringBlockSolver::samePattern(std::span<const SpringRow> rows) const {
+    if (rows.size() != keyA_.size())
+        return false;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        if (rows[i].bodyA != keyA_[i] || rows[i].bodyB != keyB_[i])
+            return false;
+    }
+    return true;
+}
+
+void SpringBlockSolver::analyse(std::span<const SpringRow> rows) {
+    const int n = static_cast<int>(rows.size());
+    keyA_.resize(n);
+    keyB_.resize(n);
+    std::uint32_t bodyCount = 0;
+    for (int i = 0; i < n; ++i) {
+        keyA_[i] = rows[i].bodyA;
+        keyB_[i] = rows[i].bodyB;
+        bodyCount = std::max({bodyCount, rows[i].bodyA + 1, rows[i].bodyB + 1});
+    }
+
+    // Rows meeting at each movable body (body 0 is the static world: it couples nothing).
+    std::vector<std::vector<std::pair<std::uint32_t, bool>>> atBody(bodyCount);
+    for (int i = 0; i < n; ++i) {
+        if (rows[i].bodyA == rows[i].bodyB)
+            continue;
+        if (rows[i].bodyA != 0)
+            atBody[rows[i].bodyA].emplace_back(i, false);
+        if (rows[i].bodyB != 0)
+            atBody[rows[i].bodyB].emplace_back(i, true);
+    }
+    std::vector<Eigen::Triplet<double, int>> triplets;
+    for (int i = 0; i < n; ++i)
+        triplets.emplace_back(i, i, 1.0);
+    couplings_.clear();
+    for (std::uint32_t body = 0; body < bodyCount; ++body) {
+        const auto& list = atBody[body];
+        for (std::size_t p = 0; p < list.size(); ++p) {
+            for (std::size_t q = p + 1; q < list.size(); ++q) {
+                couplings_.push_back(
+                    {0, list[p].first, list[q].first, body, list[p].second, list[q].second});
+                triplets.emplace_back(list[p].first, list[q].first, 1.0);
+                triplets.emplace_back(list[q].first, list[p].first, 1.0);
+            }
+        }
+    }
+
+    // Fill-reducing order: a net's rows in array order factor with a band as wide as a row of
+    // the net; minimum degree keeps the fill near linear.
+    Eigen::SparseMatrix<double, Eigen::ColMajor, int> pattern(n, n);
+    pattern.setFromTriplets(triplets.begin(), triplets.end());
+    Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> order;
+    Eigen::AMDOrdering<int>()(pattern, order);
+    rowAt_.assign(order.indices().data(), order.indices().data() + n);
+    position_.assign(n, 0);
+    for (int k = 0; k < n; ++k)
+        position_[rowAt_[k]] = k;
+
+    // Upper triangle by column, rows ascending, so each column's diagonal comes last.
+    std::vector<std::pair<int, int>> entries;  // (column, row) in the new order
+    for (int k = 0; k < n; ++k)
+        entries.emplace_back(k, k);
+    for (const Coupling& c : couplings_) {
+        const int pi = position_[c.rowI];
+        const int pj = position_[c.rowJ];
+        entries.emplace_back(std::max(pi, pj), std::min(pi, pj));
+    }
+    std::sort(entries.begin(), entries.end());
+    entries.erase(std::unique(entries.begin(), entries.end()), entries.end());
+    columnStart_.assign(n + 1, 0);
+    rowIndex_.resize(entries.size());
+    for (std::size_t e = 0; e < entries.size(); ++e) {
+        ++columnStart_[entries[e].first + 1];
+        rowIndex_[e] = entries[e].second;
+    }
+    for (int k = 0; k < n; ++k)
+        columnStart_[k + 1] += columnStart_[k];
+    values_.assign(entries.size(), 0);
+    for (Coupling& c : couplings_) {
+        const int pi = position_[c.rowI];
+        const int pj = position_[c.rowJ];
+        const std::pair<int, int> key(std::max(pi, pj), std::min(pi, pj));
+        c.entry = static_cast<std::uint32_t>(std::lower_bound(entries.begin(), entries.end(), key) -
+                                             entries.begin());
+    }
+
+    // Elimination tree and the number of entries in each column of L (ldl_symbolic).
+    parent_.assign(n, -1);
+    lCount_.assign(n, 0);
+    flag_.assign(n, 0);
+    for (int k = 0; k < n; ++k) {
+        flag_[k] = k;
+        for (int p = columnStart_[k]; p < columnStart_[k + 1]; ++p) {
+            for (int i = rowIndex_[p]; i < k && flag_[i] != k; i = parent_[i]) {
+                if (parent_[i] == -1)
+                    parent_[i] = k;
+                ++lCount_[i];
+                flag_[i] = k;
+            }
+        }
+    }
+    lStart_.assign(n + 1, 0);
+    for (int k = 0; k < n; ++k)
+        lStart_[k + 1] = lStart_[k] + lCount_[k];
+    lIndex_.resize(lStart_[n]);
+    lValue_.resize(lStart_[n]);
+    diagonal_.resize(n);
+    pattern_.resize(n);
+    work_.resize(n);
+    delta_.resize(n);
+}
+
+void SpringBlockSolver::assemble(std::span<const SolverBody> bodies,
+                                 std::span<const SpringRow> rows) {
+    std::fill(values_.begin(), values_.end(), Real(0));
+    const int n = static_cast<int>(rows.size());
+    for (int k = 0; k < n; ++k) {
+        const SpringRow& row = rows[rowAt_[k]];
+        // An inactive row is the identity: its update is minus its residual, which is zero.
+        values_[columnStart_[k + 1] - 1] = active_[rowAt_[k]] ? 1 / row.mass : 1;
+    }
+    for (const Coupling& c : couplings_) {
+        if (!active_[c.rowI] || !active_[c.rowJ])
+            continue;
+        const SpringRow& p = rows[c.rowI];
+        const SpringRow& q = rows[c.rowJ];
+        const SolverBody& body = bodies[c.body];
+        // (J_p M^-1 J_q') through this body: the rows' linear parts meet its inverse mass, their
+        // angular parts its inverse inertia; a row pulls its A end with -J.
+        const Real sign = c.sideBI == c.sideBJ ? 1 : -1;
+        const Vec3& angularP = c.sideBI ? p.angularB : p.angularA;
+        const Vec3& impulseQ = c.sideBJ ? q.angularImpulseB : q.angularImpulseA;
+        values_[c.entry] +=
+            sign * (body.inverseMass * p.direction.dot(q.direction) + angularP.dot(impulseQ));
+    }
+}
+
+bool SpringBlockSolver::factor() {
+    // ldl_numeric: column k of L from a sparse triangular solve along the elimination tree.
+    const int n = static_cast<int>(diagonal_.size());
+    for (int k = 0; k < n; ++k) {
+        work_[k] = 0;
+        int top = n;
+        flag_[k] = k;
+        lCount_[k] = 0;
+        for (int p = columnStart_[k]; p < columnStart_[k + 1]; ++p) {
+            int i = rowIndex_[p];
+            work_[i] += values_[p];
+            int length = 0;
+            for (; flag_[i] != k; i = parent_[i]) {
+                pattern_[length++] = i;
+                flag_[i] = k;
+            }
+            while (length > 0)
+                pattern_[--top] = pattern_[--length];
+        }
+        diagonal_[k] = work_[k];
+        work_[k] = 0;
+        for (; top < n; ++top) {
+            const int i = pattern_[top];
+            const Real yi = work_[i];
+            work_[i] = 0;
+            const int end = lStart_[i] + lCount_[i];
+            for (int p = lStart_[i]; p < end; ++p)
+                work_[lIndex_[p]] -= lValue_[p] * yi;
+            const Real lki = yi / diagonal_[i];
+            diagonal_[k] -= lki * yi;
+            lIndex_[end] = k;
+            lValue_[end] = lki;
+            ++lCount_[i];
+        }
+        // K is positive definite (every active row has a positive softness or a movable body);
+        // anything else is rounding on a near-rigid loop, and the solve must not divide by it.
+        if (!(diagonal_[k] > 0) || !std::isfinite(diagonal_[k]))
+            return false;
+    }
+    return true;
+}
+
+void SpringBlockSolver::prepare(std::span<const SolverBody> bodies,
+                                std::span<const SpringRow> rows) {
+    factored_ = false;
+    settled_ = false;
+    if (rows.empty())
+        return;
+    if (!samePattern(rows))
+        analyse(rows);
+    active_.resize(rows.size());
+    wanted_.resize(rows.size());
+    // A thread starts active when it is stretched at the step's start; the first solve corrects
+    // the guess.
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const SpringRow& row = rows[i];
+        active_[i] = usable(row) && (!row.tensionOnly || row.length >= row.restLength);
+    }
+    assemble(bodies, rows);
+    factored_ = factor();
+}
+
+void SpringBlockSolver::computeUpdate(std::span<const SolverBody> bodies,
+                                      std::span<const SpringRow> rows) {
+    const int n = static_cast<int>(rows.size());
+    for (int i = 0; i < n; ++i) {
+        const SpringRow& row = rows[i];
+        work_[position_[i]] = active_[i]
+                                  ? -(springRowSpeed(bodies[row.bodyA], bodies[row.bodyB], row) +
+                                      row.bias + row.softness * row.impulse)
+                                  : 0;
+    }
+    for (int j = 0; j < n; ++j) {  // L y = b
+        for (int p = lStart_[j]; p < lStart_[j + 1]; ++p)
+            work_[lIndex_[p]] -= lValue_[p] * work_[j];
+    }
+    for (int j = 0; j < n; ++j)
+        work_[j] /= diagonal_[j];
+    for (int j = n - 1; j >= 0; --j) {  // L' x = y
+        for (int p = lStart_[j]; p < lStart_[j + 1]; ++p)
+            work_[j] -= lValue_[p] * work_[lIndex_[p]];
+    }
+    for (int i = 0; i < n; ++i)
+        delta_[i] = active_[i] ? work_[position_[i]] : 0;
+}
+
+Real SpringBlockSolver::apply(std::span<SolverBody> bodies, std::span<SpringRow> rows, bool clamp) {
+    Real largestChange = 0;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        SpringRow& row = rows[i];
+        if (!active_[i])
+            continue;
+        Real next = row.impulse + delta_[i];
+        if (clamp && row.tensionOnly)
+            next = std::min<Real>(next, 0);
+        const Real change = next - row.impulse;
+        applySpringImpulse(bodies[row.bodyA], bodies[row.bodyB], row, change);
+        row.impulse = next;
+        largestChange = std::max(largestChange, std::abs(change) / row.mass);
+    }
+    return largestChange;
+}
+
+Real SpringBlockSolver::solve(std::span<SolverBody> bodies, std::span<SpringRow> rows) {
+    if (!factored_)
+        return 0;
+    if (settled_) {
+        computeUpdate(bodies, rows);
+        return apply(bodies, rows, true);
+    }
+    settled_ = true;
+    // Rows left out keep no warm-start impulse.
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        if (!active_[i] && rows[i].impulse != 0) {
+            applySpringImpulse(bodies[rows[i].bodyA], bodies[rows[i].bodyB], rows[i],
+                               -rows[i].impulse);
+            rows[i].impulse = 0;
+        }
+    }
+    for (int round = 0;; ++round) {
+        computeUpdate(bodies, rows);
+        const bool last = round + 1 == kActiveSetRounds;
+        const Real change = apply(bodies, rows, last);
+        if (last)
+            return change;
+        // A thread that pushes goes slack; a slack one that would stretch takes load.
+        bool changed = false;
+        for (std::size_t i = 0; i < rows.size(); ++i) {
+            const SpringRow& row = rows[i];
+            wanted_[i] = active_[i];
+            if (!row.tensionOnly || !usable(row))
+                continue;
+            const SolverBody& a = bodies[row.bodyA];
+            const SolverBody& b = bodies[row.bodyB];
+            wanted_[i] = active_[i] ? row.impulse <= 0 : springRowSpeed(a, b, row) + row.bias > 0;
+            changed = changed || wanted_[i] != active_[i];
+        }
+        if (!changed)
+            return change;
+        // Undo the round, release the rows that leave, and solve again with the new set.
+        for (std::size_t i = 0; i < rows.size(); ++i) {
+            SpringRow& row = rows[i];
+            if (!active_[i])
+                continue;
+            const Real keep = wanted_[i] ? row.impulse - delta_[i] : 0;
+            applySpringImpulse(bodies[row.bodyA], bodies[row.bodyB], row, keep - row.impulse);
+            row.impulse = keep;
+        }
+        std::swap(active_, wanted_);
+        assemble(bodies, rows);
+        if (!factor()) {
+            factored_ = false;
+            return change;
+        }
+    }
+}
+
+}  // namespace tumble
