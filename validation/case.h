@@ -57,13 +57,14 @@ ValidationCase tunnelCase();
 ValidationCase springStabilityCase();
 ValidationCase tautStringCase();
 ValidationCase hangingChainCase();
+ValidationCase stiffNetCase();
 
 /// Every case, in the order the runner lists them.
 inline std::vector<ValidationCase> allCases() {
-    return {freeFallCase(),   oscillatorCase(),  torqueFreeCase(), bounceCase(),
-            inclineCase(),    slideCase(),       stackCase(),      pyramidCase(),
-            massRatioCase(),  tableCase(),       tunnelCase(),     springStabilityCase(),
-            tautStringCase(), hangingChainCase()};
+    return {freeFallCase(),   oscillatorCase(),   torqueFreeCase(), bounceCase(),
+            inclineCase(),    slideCase(),        stackCase(),      pyramidCase(),
+            massRatioCase(),  tableCase(),        tunnelCase(),     springStabilityCase(),
+            tautStringCase(), hangingChainCase(), stiffNetCase()};
 }
 
 /// Least-squares slope of log(y) against log(x): the order of convergence.

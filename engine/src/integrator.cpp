@@ -64,24 +64,37 @@ void integrateVelocity(BodyStore& bodies, std::uint32_t index, const StepContext
     m.angularVelocity = rotation * bodyOmega;
 }
 
+namespace {
+
+// x += h v; q = exp(h w / 2) q, renormalised against rounding.
+void move(BodyMotion& m, const Vec3& linear, const Vec3& angular, Real h) {
+    m.center += h * linear;
+    const Vec3 rotationVector = h * angular;
+    const Real angle = rotationVector.norm();
+    if (angle > 0) {
+        const Quat delta(Eigen::AngleAxis<Real>(angle, rotationVector / angle));
+        m.orientation = (delta * m.orientation).normalized();
+    }
+}
+
+}  // namespace
+
 void integratePositions(BodyStore& bodies, std::span<const PseudoVelocity> pseudo,
                         const StepContext& context) {
-    const Real h = context.h;
     for (std::size_t k = 0; k < bodies.awake.size(); ++k) {
         BodyMotion& m = bodies.motion[bodies.awake[k]];
-        Vec3 linear = m.linearVelocity;
-        Vec3 angular = m.angularVelocity;
-        if (!pseudo.empty()) {
-            linear += pseudo[k].linear;
-            angular += pseudo[k].angular;
-        }
-        m.center += h * linear;
-        const Vec3 rotationVector = h * angular;
-        const Real angle = rotationVector.norm();
-        if (angle > 0) {
-            const Quat delta(Eigen::AngleAxis<Real>(angle, rotationVector / angle));
-            m.orientation = (delta * m.orientation).normalized();
-        }
+        if (pseudo.empty())
+            move(m, m.linearVelocity, m.angularVelocity, context.h);
+        else
+            move(m, m.linearVelocity + pseudo[k].linear, m.angularVelocity + pseudo[k].angular,
+                 context.h);
+    }
+}
+
+void displaceBodies(BodyStore& bodies, std::span<const PseudoVelocity> velocities, Real h) {
+    for (std::size_t k = 0; k < bodies.awake.size(); ++k) {
+        if (bodies.info[bodies.awake[k]].type == BodyType::Dynamic)
+            move(bodies.motion[bodies.awake[k]], velocities[k].linear, velocities[k].angular, h);
     }
 }
 

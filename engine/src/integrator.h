@@ -27,6 +27,11 @@ void integrateVelocity(BodyStore& bodies, std::uint32_t index, const StepContext
 void integratePositions(BodyStore& bodies, std::span<const PseudoVelocity> pseudo,
                         const StepContext& context);
 
+/// Moves every awake dynamic body by h times the given velocities (one per awake body, in
+/// BodyStore::awake order) and nothing else: a position correction that leaves the real
+/// velocities alone.
+void displaceBodies(BodyStore& bodies, std::span<const PseudoVelocity> velocities, Real h);
+
 /// The torque-free Euler equations I dw/dt = -w x (I w) in body axes over one step, by the
 /// implicit midpoint rule:  I (w1 - w0) + h wm x (I wm) = 0,  wm = (w0 + w1) / 2.
 ///

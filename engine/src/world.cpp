@@ -271,8 +271,10 @@ StepStatus World::step() {
         w.solverStats =
             w.solve.run(w.bodies, w.shapes, w.contacts, w.springs, context, w.settings.solver);
     });
-    w.profile.integrate =
-        timed([&] { integratePositions(w.bodies, w.solve.pseudoVelocities(), context); });
+    w.profile.integrate = timed([&] {
+        integratePositions(w.bodies, w.solve.pseudoVelocities(), context);
+        w.solve.projectSprings(w.bodies, w.springs, context, w.settings.solver);
+    });
     StepStatus status;
     w.profile.finalize = timed([&] {
         status = w.finalize();

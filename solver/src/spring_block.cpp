@@ -260,12 +260,29 @@ Real SpringBlockSolver::apply(std::span<SolverBody> bodies, std::span<SpringRow>
     return largestChange;
 }
 
+Real SpringBlockSolver::relaxSlackRows(std::span<SolverBody> bodies, std::span<SpringRow> rows) {
+    Real largestChange = 0;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        SpringRow& row = rows[i];
+        if (active_[i] || !row.tensionOnly || !usable(row))
+            continue;
+        SolverBody& a = bodies[row.bodyA];
+        SolverBody& b = bodies[row.bodyB];
+        const Real residual = springRowSpeed(a, b, row) + row.bias + row.softness * row.impulse;
+        const Real next = std::min<Real>(0, row.impulse - row.mass * residual);
+        applySpringImpulse(a, b, row, next - row.impulse);
+        largestChange = std::max(largestChange, std::abs(next - row.impulse) / row.mass);
+        row.impulse = next;
+    }
+    return largestChange;
+}
+
 Real SpringBlockSolver::solve(std::span<SolverBody> bodies, std::span<SpringRow> rows) {
     if (!factored_)
         return 0;
     if (settled_) {
         computeUpdate(bodies, rows);
-        return apply(bodies, rows, true);
+        return std::max(apply(bodies, rows, false), relaxSlackRows(bodies, rows));
     }
     settled_ = true;
     // Rows left out keep no warm-start impulse.

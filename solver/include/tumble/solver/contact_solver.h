@@ -78,6 +78,10 @@ struct SolverSettings {
         1;                  ///< approach speed below which contacts are inelastic (m/s), >= 0
     bool warmStart = true;  ///< start from the cached impulses
     SpringSolve springSolve = SpringSolve::Direct;
+    /// Post-stabilisation of implicit springs: after the positions move, remove the length a
+    /// spring gained by turning within the step, which the linearised solve cannot see (see
+    /// SolveStage::projectSprings). Off reproduces the plain linearised implicit step.
+    bool projectSprings = true;
 };
 
 /// The two friction directions the solver uses for normal n (unit): orthonormal, right-handed

@@ -20,7 +20,12 @@
 ///
 /// Tension-only rows (threads) make it an LCP: an active set. A slack thread's row is left out
 /// (lambda = 0); rows whose solution pushes are dropped, dropped rows that would be stretched are
-/// taken back, for a few rounds at the first solve of a step; later solves keep the set and clamp.
+/// taken back, for a few rounds at the first solve of a step. Later solves (after contacts have
+/// moved the bodies) keep the set: a taut thread stays a two-sided row until the step ends, and
+/// a slack one that contacts begin to stretch pulls by Gauss-Seidel on its own row. Clamping
+/// the taut rows in those later solves instead left the block's other rows answering a push that
+/// was then taken away: a 40 x 40 net draping a cylinder gained 98 % of its energy that way,
+/// against 4 % without the clamp.
 ///
 /// Deterministic: rows in array order, fixed ordering for a fixed pattern.
 
@@ -68,6 +73,9 @@ private:
     /// delta = -K^-1 residual over the active rows (in original row order).
     void computeUpdate(std::span<const SolverBody> bodies, std::span<const SpringRow> rows);
     Real apply(std::span<SolverBody> bodies, std::span<SpringRow> rows, bool clamp);
+    /// Threads the active set left slack, by Gauss-Seidel: contacts solved after the set was
+    /// chosen may stretch them, and nothing else would stop it.
+    Real relaxSlackRows(std::span<SolverBody> bodies, std::span<SpringRow> rows);
 
     // Pattern key: the rows' bodies.
     std::vector<std::uint32_t> keyA_;
