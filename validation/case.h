@@ -57,13 +57,18 @@ ValidationCase tunnelCase();
 ValidationCase springStabilityCase();
 ValidationCase tautStringCase();
 ValidationCase hangingChainCase();
+ValidationCase pendulumCase();
+ValidationCase jointChainCase();
+ValidationCase fiveBodyPendulumCase();
+ValidationCase motorCase();
 
 /// Every case, in the order the runner lists them.
 inline std::vector<ValidationCase> allCases() {
-    return {freeFallCase(),   oscillatorCase(),  torqueFreeCase(), bounceCase(),
-            inclineCase(),    slideCase(),       stackCase(),      pyramidCase(),
-            massRatioCase(),  tableCase(),       tunnelCase(),     springStabilityCase(),
-            tautStringCase(), hangingChainCase()};
+    return {freeFallCase(),         oscillatorCase(),   torqueFreeCase(), bounceCase(),
+            inclineCase(),          slideCase(),        stackCase(),      pyramidCase(),
+            massRatioCase(),        tableCase(),        tunnelCase(),     springStabilityCase(),
+            tautStringCase(),       hangingChainCase(), pendulumCase(),   jointChainCase(),
+            fiveBodyPendulumCase(), motorCase()};
 }
 
 /// Least-squares slope of log(y) against log(x): the order of convergence.

@@ -182,7 +182,8 @@ void checkSolverSettings(const SolverSettings& s) {
 SolverStats ContactSolver::solve(std::span<SolverBody> bodies,
                                  std::span<ContactConstraint> constraints,
                                  std::vector<PseudoVelocity>& pseudo, Real h,
-                                 const SolverSettings& settings, std::span<SpringRow> springs) {
+                                 const SolverSettings& settings, std::span<SpringRow> springs,
+                                 std::span<JointRow> joints) {
     const Real inverseH = 1 / h;
     SolverStats stats;
     for (const ContactConstraint& c : constraints) {
@@ -192,8 +193,11 @@ SolverStats ContactSolver::solve(std::span<SolverBody> bodies,
     }
     prepare(bodies, constraints, h, settings);
     prepareSpringRows(bodies, springs, h, settings.warmStart);
+    joints_ = joints;
+    prepareJointRows(bodies, joints_, h, settings.warmStart);
     const bool split = settings.stabilisation == Stabilisation::SplitImpulse;
     const Real bias = split ? settings.splitImpulseFactor : settings.baumgarte;
+    jointBias_ = split ? 0 : bias;
     stats.iterations =
         runSweeps(bodies, constraints, springs, settings, inverseH, bias, settings.iterations);
     pseudo.resize(bodies.size());
@@ -212,7 +216,25 @@ SolverStats ContactSolver::solve(std::span<SolverBody> bodies,
     stats.maxResidual = residual(bodies, constraints, settings, inverseH, split ? 0 : bias);
     if (split)
         correctBounces(bodies, constraints, pseudo, inverseH, settings);
+    if (split && !joints.empty())
+        correctJoints(bodies, pseudo, inverseH, settings);
     return stats;
+}
+
+void ContactSolver::correctJoints(std::span<const SolverBody> bodies,
+                                  std::vector<PseudoVelocity>& pseudo, Real inverseH,
+                                  const SolverSettings& settings) {
+    pseudoBodies_.assign(bodies.begin(), bodies.end());
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        pseudoBodies_[i].linearVelocity = pseudo[i].linear;
+        pseudoBodies_[i].angularVelocity = pseudo[i].angular;
+    }
+    solveJointPositions(pseudoBodies_, joints_, settings.splitImpulseFactor, inverseH,
+                        settings.iterations);
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        pseudo[i].linear = pseudoBodies_[i].linearVelocity;
+        pseudo[i].angular = pseudoBodies_[i].angularVelocity;
+    }
 }
 
 int ContactSolver::runSweeps(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
@@ -221,7 +243,9 @@ int ContactSolver::runSweeps(std::span<SolverBody> bodies, std::span<ContactCons
     for (int sweep = 0; sweep < sweeps;) {
         // Springs first, contacts last: non-penetration matters most. The springs' rows take no
         // bias, so they are solved the same way in the biased and in the relax sweeps.
-        const Real springChange = solveSpringRows(bodies, springs, settings.relaxation);
+        const Real springChange =
+            std::max(solveSpringRows(bodies, springs, settings.relaxation),
+                     solveJointRows(bodies, joints_, settings.relaxation, jointBias_, inverseH));
         const Real largestChange = std::max(
             springChange, solveVelocitySweep(bodies, constraints, settings, inverseH, bias));
         ++sweep;
