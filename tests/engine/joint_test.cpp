@@ -47,7 +47,7 @@ TEST(Joints, BallJointCarriesTheWeight) {
     World world(quietWorld());
     const BodyId body = addBody(world, Vec3(0, 0, -1), 2);
     const JointId joint = world.createJoint(
-        JointDef{.type = JointType::Ball, .bodyA = body, .anchor = Vec3::Zero()});
+        JointDef{.type = JointType::Ball, .bodyA = body, .bodyB = {}, .anchor = Vec3::Zero()});
     run(world, 120);
     EXPECT_NEAR(world.position(body).z(), -1, 1e-9);
     EXPECT_NEAR(world.position(body).x(), 0, 1e-9);
@@ -59,7 +59,8 @@ TEST(Joints, BallJointCarriesTheWeight) {
 TEST(Joints, FixedJointHoldsPoseOnALongLever) {
     World world(quietWorld());
     const BodyId body = addBody(world, Vec3(1, 0, 0), 1);
-    world.createJoint(JointDef{.type = JointType::Fixed, .bodyA = body, .anchor = Vec3::Zero()});
+    world.createJoint(
+        JointDef{.type = JointType::Fixed, .bodyA = body, .bodyB = {}, .anchor = Vec3::Zero()});
     run(world, 300);
     EXPECT_LT((world.position(body) - Vec3(1, 0, 0)).norm(), 1e-6);
     EXPECT_LT(world.orientation(body).angularDistance(Quat::Identity()), 1e-6);
@@ -73,6 +74,7 @@ TEST(Joints, HingeLimitStopsTheSwing) {
     const BodyId body = addBody(world, Vec3(1, 0, 0), 1);
     const JointId hinge = world.createJoint(JointDef{.type = JointType::Hinge,
                                                      .bodyA = body,
+                                                     .bodyB = {},
                                                      .anchor = Vec3::Zero(),
                                                      .axis = Vec3::UnitY(),
                                                      .enableLimit = true,
@@ -97,6 +99,7 @@ TEST(Joints, SliderFallsAlongItsAxisToTheLimit) {
     const BodyId body = addBody(world, Vec3(0.2, 0, 0), 1);
     const JointId slider = world.createJoint(JointDef{.type = JointType::Slider,
                                                       .bodyA = body,
+                                                      .bodyB = {},
                                                       .anchor = Vec3(0.2, 0, 0),
                                                       .axis = Vec3::UnitZ(),
                                                       .enableLimit = true,
@@ -122,12 +125,14 @@ TEST(Joints, RopeIsSlackWhenShortRodIsNot) {
     world.setLinearVelocity(rodded, Vec3(0, 0, 2));
     world.createJoint(JointDef{.type = JointType::Distance,
                                .bodyA = roped,
+                               .bodyB = {},
                                .anchor = Vec3(0, 0, -0.5),
                                .anchorB = Vec3(0, 0, 0.5),
                                .length = 1,
                                .rope = true});
     world.createJoint(JointDef{.type = JointType::Distance,
                                .bodyA = rodded,
+                               .bodyB = {},
                                .anchor = Vec3(3, 0, -0.5),
                                .anchorB = Vec3(3, 0, 0.5)});
     run(world, 6);  // 0.1 s: thrown up by 2 m/s, the rope goes slack
@@ -140,8 +145,11 @@ TEST(Joints, RopeIsSlackWhenShortRodIsNot) {
 TEST(Joints, BreaksAboveItsForceAndReleasesTheBody) {
     World world(quietWorld());
     const BodyId body = addBody(world, Vec3(0, 0, -1), 1);
-    const JointId joint = world.createJoint(JointDef{
-        .type = JointType::Ball, .bodyA = body, .anchor = Vec3::Zero(), .breakForce = 5});
+    const JointId joint = world.createJoint(JointDef{.type = JointType::Ball,
+                                                     .bodyA = body,
+                                                     .bodyB = {},
+                                                     .anchor = Vec3::Zero(),
+                                                     .breakForce = 5});
     ASSERT_TRUE(world.step().ok());
     EXPECT_TRUE(world.jointState(joint).broken);
     const Real z = world.position(body).z();
@@ -153,8 +161,11 @@ TEST(Joints, BreaksAboveItsForceAndReleasesTheBody) {
 TEST(Joints, HoldsBelowItsBreakForce) {
     World world(quietWorld());
     const BodyId body = addBody(world, Vec3(0, 0, -1), 1);
-    const JointId joint = world.createJoint(JointDef{
-        .type = JointType::Ball, .bodyA = body, .anchor = Vec3::Zero(), .breakForce = 12});
+    const JointId joint = world.createJoint(JointDef{.type = JointType::Ball,
+                                                     .bodyA = body,
+                                                     .bodyB = {},
+                                                     .anchor = Vec3::Zero(),
+                                                     .breakForce = 12});
     run(world, 60);
     EXPECT_FALSE(world.jointState(joint).broken);
 }
@@ -239,51 +250,56 @@ TEST(Joints, BadDefinitionsAreRefusedByName) {
     const auto refused = [&](JointDef def) { return refusal([&] { world.createJoint(def); }); };
 
     EXPECT_TRUE(contains(refused(JointDef{}), "JointDef.bodyA is null"));
-    EXPECT_TRUE(contains(refused(JointDef{.bodyA = gone}), "JointDef.bodyA"));
-    EXPECT_TRUE(contains(refused(JointDef{.bodyA = gone}), "not a live body"));
+    EXPECT_TRUE(contains(refused(JointDef{.bodyA = gone, .bodyB = {}}), "JointDef.bodyA"));
+    EXPECT_TRUE(contains(refused(JointDef{.bodyA = gone, .bodyB = {}}), "not a live body"));
     EXPECT_TRUE(contains(refused(JointDef{.bodyA = a, .bodyB = gone}), "JointDef.bodyB"));
     EXPECT_TRUE(contains(refused(JointDef{.bodyA = a, .bodyB = a}), "same body"));
-    EXPECT_TRUE(contains(refused(JointDef{.bodyA = ground}), "neither body"));
+    EXPECT_TRUE(contains(refused(JointDef{.bodyA = ground, .bodyB = {}}), "neither body"));
     EXPECT_TRUE(contains(
-        refused(JointDef{.type = JointType::Hinge, .bodyA = a, .axis = Vec3::Zero()}),
+        refused(JointDef{.type = JointType::Hinge, .bodyA = a, .bodyB = {}, .axis = Vec3::Zero()}),
         "JointDef.axis"));
     EXPECT_TRUE(contains(
-        refused(JointDef{.type = JointType::Slider, .bodyA = a, .axis = Vec3::Zero()}),
+        refused(JointDef{.type = JointType::Slider, .bodyA = a, .bodyB = {}, .axis = Vec3::Zero()}),
         "must be non-zero"));
     EXPECT_TRUE(contains(refused(JointDef{.type = JointType::Hinge,
                                           .bodyA = a,
+                                          .bodyB = {},
                                           .enableLimit = true,
                                           .lower = 0.5,
                                           .upper = -0.5}),
                          "lower = 0.5 > upper = -0.5"));
     EXPECT_TRUE(contains(refused(JointDef{.type = JointType::Hinge,
                                           .bodyA = a,
+                                          .bodyB = {},
                                           .enableLimit = true,
                                           .lower = -4,
                                           .upper = 0}),
                          "[-pi, pi]"));
     EXPECT_TRUE(contains(refused(JointDef{.type = JointType::Hinge,
                                           .bodyA = a,
+                                          .bodyB = {},
                                           .enableMotor = true,
                                           .maxMotorForce = -1}),
                          "JointDef.maxMotorForce = -1"));
-    EXPECT_TRUE(contains(refused(JointDef{.bodyA = a, .breakForce = 0}), "breakForce"));
+    EXPECT_TRUE(
+        contains(refused(JointDef{.bodyA = a, .bodyB = {}, .breakForce = 0}), "breakForce"));
     EXPECT_TRUE(contains(
-        refused(JointDef{.bodyA = a, .breakTorque = std::numeric_limits<Real>::quiet_NaN()}),
+        refused(JointDef{
+            .bodyA = a, .bodyB = {}, .breakTorque = std::numeric_limits<Real>::quiet_NaN()}),
         "breakTorque"));
-    EXPECT_TRUE(contains(refused(JointDef{.type = JointType::Distance, .bodyA = a}),
+    EXPECT_TRUE(contains(refused(JointDef{.type = JointType::Distance, .bodyA = a, .bodyB = {}}),
                          "length is 0"));
-    EXPECT_TRUE(contains(refused(JointDef{.bodyA = a,
-                                          .anchor = Vec3(std::numeric_limits<Real>::infinity(),
-                                                         0, 0)}),
-                         "JointDef.anchor"));
+    EXPECT_TRUE(contains(
+        refused(JointDef{
+            .bodyA = a, .bodyB = {}, .anchor = Vec3(std::numeric_limits<Real>::infinity(), 0, 0)}),
+        "JointDef.anchor"));
     EXPECT_EQ(world.jointCount(), 0);
 
-    const JointId ball =
-        world.createJoint(JointDef{.type = JointType::Ball, .bodyA = a, .anchor = Vec3::Zero()});
+    const JointId ball = world.createJoint(
+        JointDef{.type = JointType::Ball, .bodyA = a, .bodyB = {}, .anchor = Vec3::Zero()});
     EXPECT_TRUE(contains(refusal([&] { world.setJointMotor(ball, true, 1, 1); }), "no motor"));
-    EXPECT_TRUE(contains(refusal([&] { world.setJointMotor(ball, false, 1, -2); }),
-                         "maxMotorForce = -2"));
+    EXPECT_TRUE(
+        contains(refusal([&] { world.setJointMotor(ball, false, 1, -2); }), "maxMotorForce = -2"));
     EXPECT_TRUE(contains(refusal([&] { world.jointState(JointId{}); }), "JointId"));
 }
 
