@@ -58,13 +58,20 @@ ValidationCase springStabilityCase();
 ValidationCase tautStringCase();
 ValidationCase hangingChainCase();
 ValidationCase stiffNetCase();
+ValidationCase pendulumCase();
+ValidationCase jointChainCase();
+ValidationCase fiveBodyPendulumCase();
+ValidationCase motorCase();
 
 /// Every case, in the order the runner lists them.
 inline std::vector<ValidationCase> allCases() {
-    return {freeFallCase(),   oscillatorCase(),   torqueFreeCase(), bounceCase(),
-            inclineCase(),    slideCase(),        stackCase(),      pyramidCase(),
-            massRatioCase(),  tableCase(),        tunnelCase(),     springStabilityCase(),
-            tautStringCase(), hangingChainCase(), stiffNetCase()};
+    return {freeFallCase(),   oscillatorCase(),   torqueFreeCase(),
+            bounceCase(),     inclineCase(),      slideCase(),
+            stackCase(),      pyramidCase(),      massRatioCase(),
+            tableCase(),      tunnelCase(),       springStabilityCase(),
+            tautStringCase(), hangingChainCase(), stiffNetCase(),
+            pendulumCase(),   jointChainCase(),   fiveBodyPendulumCase(),
+            motorCase()};
 }
 
 /// Least-squares slope of log(y) against log(x): the order of convergence.

@@ -80,6 +80,11 @@ public:
     /// step), so sleeping contacts cost nothing unless the application reads them.
     std::span<const Contact> contacts() const;
     const SweepAndPrune& broadphase() const { return broadphase_; }
+    /// Keeps two shapes' proxies from pairing (jointed bodies), or lets them pair again; their
+    /// contact goes or comes at the next broadphase update.
+    void setPairExcluded(std::uint32_t proxyA, std::uint32_t proxyB, bool excluded) {
+        broadphase_.setPairExcluded(proxyA, proxyB, excluded);
+    }
     std::uint32_t shapeOfProxy(std::uint32_t proxy) const { return proxyToShape_[proxy]; }
 
     Real contactMargin = 0.02;  ///< speculative distance added to h |v_rel| (m)

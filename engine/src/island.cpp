@@ -37,7 +37,8 @@ void Islands::wake(BodyStore& bodies, ContactManager& contacts, std::uint32_t in
                     stack_.push_back(other);
                 }
             });
-        // Joints, when they exist, join islands too: walk the body's joints here the same way.
+        // Joints join islands too; a body left asleep across a joint is woken by
+        // wakeJointLinked before the solve.
     }
 }
 
@@ -94,7 +95,8 @@ void Islands::wakeTouched(BodyStore& bodies, ContactManager& contacts, const Ste
 }
 
 void Islands::updateSleep(BodyStore& bodies, ContactManager& contacts, const SpringStore& springs,
-                          const StepContext& context, const WorldDef& settings) {
+                          const JointStore& joints, const StepContext& context,
+                          const WorldDef& settings) {
     if (!settings.enableSleep)
         return;
     const Real linear2 = settings.linearSleepVelocity * settings.linearSleepVelocity;
@@ -136,13 +138,13 @@ void Islands::updateSleep(BodyStore& bodies, ContactManager& contacts, const Spr
             bodies.info[b].sleepTime = 0;
         }
     }
-    // Joints, when they exist, unite their two bodies here exactly as touching contacts do.
-    // Springs do (a spring to a world point joins nothing).
-    for (const SpringDef& def : springs.defs) {
-        if (def.bodyB.isNull())
-            continue;
-        const std::uint32_t a = bodies.indexOf(def.bodyA);
-        const std::uint32_t b = bodies.indexOf(def.bodyB);
+    // Springs and unbroken joints unite their two bodies exactly as touching contacts do (one
+    // to a world point joins nothing).
+    const auto link = [&](BodyId bodyA, BodyId bodyB) {
+        if (bodyB.isNull())
+            return;
+        const std::uint32_t a = bodies.indexOf(bodyA);
+        const std::uint32_t b = bodies.indexOf(bodyB);
         const bool dynamicA = bodies.isAwakeDynamic(a);
         const bool dynamicB = bodies.isAwakeDynamic(b);
         if (dynamicA && dynamicB) {
@@ -152,6 +154,12 @@ void Islands::updateSleep(BodyStore& bodies, ContactManager& contacts, const Spr
         } else if (dynamicB && bodies.isMovingKinematic(a)) {
             bodies.info[b].sleepTime = 0;
         }
+    };
+    for (const SpringDef& def : springs.defs)
+        link(def.bodyA, def.bodyB);
+    for (std::uint32_t i = 0; i < joints.count(); ++i) {
+        if (!joints.state[i].broken)
+            link(joints.records[i].def.bodyA, joints.records[i].def.bodyB);
     }
 
     islandSleepTime_.assign(count, std::numeric_limits<Real>::infinity());

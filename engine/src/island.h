@@ -27,6 +27,7 @@
 
 #include "body_store.h"
 #include "contact_manager.h"
+#include "joint_store.h"
 #include "spring_store.h"
 #include "step_context.h"
 #include "tumble/world.h"
@@ -55,9 +56,10 @@ public:
     /// step solves them (their bodies catch up on this step's forces).
     void wakeTouched(BodyStore& bodies, ContactManager& contacts, const StepContext& context);
     /// Sleep stage: timers, and the islands still for timeToSleep fall asleep. Springs join
-    /// their two bodies' islands as touching contacts do.
+    /// their two bodies' islands as touching contacts do, and so do unbroken joints.
     void updateSleep(BodyStore& bodies, ContactManager& contacts, const SpringStore& springs,
-                     const StepContext& context, const WorldDef& settings);
+                     const JointStore& joints, const StepContext& context,
+                     const WorldDef& settings);
 
 private:
     void putToSleep(BodyStore& bodies, ContactManager& contacts,

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "integrator.h"
+#include "joints.h"
 #include "springs.h"
 
 namespace tumble {
@@ -42,7 +43,7 @@ std::span<const PseudoVelocity> SolveStage::pseudoVelocities() const {
 }
 
 SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, ContactManager& contacts,
-                            SpringStore& springs, const StepContext& context,
+                            SpringStore& springs, JointStore& joints, const StepContext& context,
                             const SolverSettings& settings) {
     const std::size_t awakeCount = bodies.awake.size();
     solverBodies_.resize(1 + awakeCount);
@@ -113,8 +114,13 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
         },
         springRows_, rowSpring_);
 
-    const SolverStats stats =
-        solver_.solve(solverBodies_, constraints_, pseudo_, context.h, settings, springRows_);
+    buildJointRows(joints, bodies, context.h, jointRows_, rowJoint_);
+
+    const SolverStats stats = solver_.solve(solverBodies_, constraints_, pseudo_, context.h,
+                                            settings, springRows_, jointRows_);
+
+    brokenJoints_.clear();
+    storeJointResults(joints, jointRows_, rowJoint_, context.h, brokenJoints_);
 
     for (std::size_t j = 0; j < springRows_.size(); ++j) {
         const SpringRow& row = springRows_[j];

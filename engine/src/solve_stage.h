@@ -12,6 +12,7 @@
 
 #include "body_store.h"
 #include "contact_manager.h"
+#include "joint_store.h"
 #include "shape_store.h"
 #include "spring_store.h"
 #include "step_context.h"
@@ -26,9 +27,13 @@ public:
     /// the awake dynamic bodies are updated, and pseudoVelocities() holds the split-impulse
     /// velocities for integratePositions. Implicit springs with an awake dynamic body at either
     /// end are solved as soft rows with the contacts; their tensions go back into `springs`.
+    /// Joints likewise (unless broken); their forces go back into `joints`, and the joints that
+    /// broke in this step are listed by brokenJoints().
     SolverStats run(BodyStore& bodies, const ShapeStore& shapes, ContactManager& contacts,
-                    SpringStore& springs, const StepContext& context,
+                    SpringStore& springs, JointStore& joints, const StepContext& context,
                     const SolverSettings& settings);
+    /// Dense indices of the joints that broke in the last run.
+    std::span<const std::uint32_t> brokenJoints() const { return brokenJoints_; }
 
     /// One per awake body, in BodyStore::awake order (empty if the solver gave none).
     std::span<const PseudoVelocity> pseudoVelocities() const;
@@ -58,6 +63,9 @@ private:
     std::vector<SpringRow> projectedRows_;
     std::vector<SolverBody> projectedBodies_;
     std::vector<PseudoVelocity> corrections_;
+    std::vector<JointRow> jointRows_;
+    std::vector<std::uint32_t> rowJoint_;  ///< joint index of each row
+    std::vector<std::uint32_t> brokenJoints_;
 };
 
 /// Mixing rules for a pair of materials: friction by geometric mean (a frictionless surface

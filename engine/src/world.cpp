@@ -5,6 +5,7 @@
 
 #include "checks.h"
 #include "integrator.h"
+#include "joints.h"
 #include "tumble/core/error.h"
 #include "world_impl.h"
 
@@ -53,6 +54,7 @@ void World::destroyBody(BodyId id) {
         slot = next;
     }
     impl_->springs.removeAttachedTo(id);
+    impl_->removeJointsOf(id);
     impl_->drag.remove(id);
     impl_->bodies.remove(id);
 }
@@ -256,8 +258,11 @@ StepStatus World::step() {
     const StepContext context = w.context();
     if (w.springs.count() > 0)
         wakeSpringLinked(w.springs, w.bodies, w.contacts, w.islands);
+    if (w.joints.count() > 0)
+        wakeJointLinked(w.joints, w.bodies, w.contacts, w.islands);
     w.bodies.savePreviousMotion();  // awake bodies: the others do not move
     w.springs.saveState();
+    w.joints.saveState();
 
     w.profile.forces = timed([&] {
         w.forceElements.apply(w.springs, w.drag, w.bodies);
@@ -266,10 +271,15 @@ StepStatus World::step() {
     });
     w.profile.broadphase = timed([&] { w.contacts.updatePairs(); });
     w.profile.narrowphase = timed([&] { w.contacts.updateContacts(w.shapes, w.bodies, context); });
-    w.profile.islands = timed([&] { w.islands.wakeTouched(w.bodies, w.contacts, context); });
+    w.profile.islands = timed([&] {
+        w.islands.wakeTouched(w.bodies, w.contacts, context);
+        // A body woken by a touch wakes what it is jointed to before the solve.
+        if (w.joints.count() > 0)
+            wakeJointLinked(w.joints, w.bodies, w.contacts, w.islands, &context);
+    });
     w.profile.solve = timed([&] {
-        w.solverStats =
-            w.solve.run(w.bodies, w.shapes, w.contacts, w.springs, context, w.settings.solver);
+        w.solverStats = w.solve.run(w.bodies, w.shapes, w.contacts, w.springs, w.joints, context,
+                                    w.settings.solver);
     });
     w.profile.integrate = timed([&] {
         integratePositions(w.bodies, w.solve.pseudoVelocities(), context);
@@ -281,11 +291,14 @@ StepStatus World::step() {
         if (!status.ok()) {
             status.spring = w.springs.strongestOn(status.body);
             w.springs.restoreState();
+            w.joints.restoreState();
+        } else {
+            w.releaseBrokenJoints();
         }
     });
     w.profile.sleep = timed([&] {
         if (status.ok())
-            w.islands.updateSleep(w.bodies, w.contacts, w.springs, context, w.settings);
+            w.islands.updateSleep(w.bodies, w.contacts, w.springs, w.joints, context, w.settings);
     });
 
     w.profile.total = std::chrono::duration<double>(Clock::now() - start).count();

@@ -7,6 +7,8 @@
 #include "body_store.h"
 #include "contact_manager.h"
 #include "island.h"
+#include "joint_store.h"
+#include "joints.h"
 #include "shape_store.h"
 #include "solve_stage.h"
 #include "spring_store.h"
@@ -33,6 +35,7 @@ struct World::Impl {
     Islands islands;
     SolveStage solve;
     SpringStore springs;
+    JointStore joints;
     DragStore drag;
     ForceElements forceElements;
     SolverStats solverStats;
@@ -70,6 +73,26 @@ struct World::Impl {
         for (std::uint32_t slot = bodies.info[bodyIndex].firstShape; slot != BodyInfo::kNoShape;
              slot = shapes.records[slot].nextInBody) {
             contacts.refreshShape(shapes, slot, bodies, settings.timeStep);
+        }
+    }
+
+    // Joints that broke in the step just taken stop filtering their bodies' collisions.
+    void releaseBrokenJoints() {
+        for (const std::uint32_t index : solve.brokenJoints())
+            setJointedPairsExcluded(joints, shapes, bodies, contacts, index, false);
+    }
+
+    // A body is being destroyed: its joints go (their exclusions go with its shapes), and what
+    // they held wakes.
+    void removeJointsOf(BodyId body) {
+        for (std::uint32_t i = joints.count(); i-- > 0;) {
+            const JointDef& def = joints.records[i].def;
+            if (!(def.bodyA == body || def.bodyB == body))
+                continue;
+            const BodyId other = def.bodyA == body ? def.bodyB : def.bodyA;
+            if (!other.isNull())
+                islands.push(bodies, contacts, bodies.indexOf(other));
+            joints.remove(joints.idAt(i));
         }
     }
 

@@ -45,6 +45,8 @@ ShapeId World::createShape(BodyId body, const ShapeDef& def) {
     record.nextInBody = info.firstShape;
     info.firstShape = id.index;
     w.contacts.addShape(w.shapes, id.index, w.bodies, w.settings.timeStep);
+    if (w.joints.count() > 0)
+        excludeJointedPairs(w.joints, w.shapes, w.bodies, w.contacts, id.index);
     if (updateMass) {
         w.bodies.setMass(bodyIndex, mass);
         info.massFromShapes = true;

@@ -182,7 +182,8 @@ void checkSolverSettings(const SolverSettings& s) {
 SolverStats ContactSolver::solve(std::span<SolverBody> bodies,
                                  std::span<ContactConstraint> constraints,
                                  std::vector<PseudoVelocity>& pseudo, Real h,
-                                 const SolverSettings& settings, std::span<SpringRow> springs) {
+                                 const SolverSettings& settings, std::span<SpringRow> springs,
+                                 std::span<JointRow> joints) {
     const Real inverseH = 1 / h;
     SolverStats stats;
     for (const ContactConstraint& c : constraints) {
@@ -195,8 +196,11 @@ SolverStats ContactSolver::solve(std::span<SolverBody> bodies,
     directSprings_ = settings.springSolve == SpringSolve::Direct && !springs.empty();
     if (directSprings_)
         springBlock_.prepare(bodies, springs);
+    joints_ = joints;
+    prepareJointRows(bodies, joints_, h, settings.warmStart);
     const bool split = settings.stabilisation == Stabilisation::SplitImpulse;
     const Real bias = split ? settings.splitImpulseFactor : settings.baumgarte;
+    jointBias_ = split ? 0 : bias;
     stats.iterations =
         runSweeps(bodies, constraints, springs, settings, inverseH, bias, settings.iterations);
     pseudo.resize(bodies.size());
@@ -215,7 +219,25 @@ SolverStats ContactSolver::solve(std::span<SolverBody> bodies,
     stats.maxResidual = residual(bodies, constraints, settings, inverseH, split ? 0 : bias);
     if (split)
         correctBounces(bodies, constraints, pseudo, inverseH, settings);
+    if (split && !joints.empty())
+        correctJoints(bodies, pseudo, inverseH, settings);
     return stats;
+}
+
+void ContactSolver::correctJoints(std::span<const SolverBody> bodies,
+                                  std::vector<PseudoVelocity>& pseudo, Real inverseH,
+                                  const SolverSettings& settings) {
+    pseudoBodies_.assign(bodies.begin(), bodies.end());
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        pseudoBodies_[i].linearVelocity = pseudo[i].linear;
+        pseudoBodies_[i].angularVelocity = pseudo[i].angular;
+    }
+    solveJointPositions(pseudoBodies_, joints_, settings.splitImpulseFactor, inverseH,
+                        settings.iterations);
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        pseudo[i].linear = pseudoBodies_[i].linearVelocity;
+        pseudo[i].angular = pseudoBodies_[i].angularVelocity;
+    }
 }
 
 int ContactSolver::runSweeps(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
@@ -230,6 +252,8 @@ int ContactSolver::runSweeps(std::span<SolverBody> bodies, std::span<ContactCons
             springChange = solveSpringRows(bodies, springs, settings.relaxation);
         else if (sweep == 0 || !constraints.empty())
             springChange = springBlock_.solve(bodies, springs);
+        springChange = std::max(springChange, solveJointRows(bodies, joints_, settings.relaxation,
+                                                             jointBias_, inverseH));
         const Real largestChange = std::max(
             springChange, solveVelocitySweep(bodies, constraints, settings, inverseH, bias));
         ++sweep;

@@ -22,6 +22,7 @@
 #include "tumble/body.h"
 #include "tumble/contact.h"
 #include "tumble/core/math.h"
+#include "tumble/joint.h"
 #include "tumble/query.h"
 #include "tumble/shape.h"
 #include "tumble/solver/contact_solver.h"
@@ -227,6 +228,26 @@ public:
     /// coefficients and a non-finite projection; ignored by static and kinematic bodies.
     void setDrag(BodyId id, const Drag& drag);
     Drag drag(BodyId id) const;
+
+    // --- joints (joint.h) ----------------------------------------------------------------------
+    /// Creates a joint at the bodies' current poses. Refuses (InvalidArgument) a missing, stale
+    /// or null bodyA, a stale bodyB, both ends on one body, no dynamic body, non-finite anchors
+    /// or axis, a zero hinge or slider axis, a zero distance, limits with lower > upper (or a
+    /// hinge's outside [-pi, pi]), a negative or non-finite motor force, and break thresholds
+    /// that are not > 0. Wakes the bodies it joins; unless collideConnected, their shapes stop
+    /// colliding with each other.
+    JointId createJoint(const JointDef& def);
+    /// Destroys a joint; its id becomes invalid. Destroying a body destroys its joints.
+    void destroyJoint(JointId id);
+    bool isValid(JointId id) const;
+    int jointCount() const;
+    const JointDef& jointDef(JointId id) const;
+    /// Reaction of the last step, position and speed at the current state, broken or not.
+    JointState jointState(JointId id) const;
+    /// Sets a hinge's or slider's motor (JointDef::enableMotor, motorSpeed, maxMotorForce) and
+    /// wakes its bodies. Refuses a non-finite speed, a negative or non-finite force, and
+    /// enabling a motor on a joint type that has none.
+    void setJointMotor(JointId id, bool enable, Real speed, Real maxForce);
 
     // --- stepping ----------------------------------------------------------------------------
     /// One fixed step of length settings().timeStep. Never throws.

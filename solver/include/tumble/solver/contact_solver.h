@@ -37,6 +37,7 @@
 #include <span>
 #include <vector>
 
+#include "tumble/solver/joint_row.h"
 #include "tumble/solver/solver_body.h"
 #include "tumble/solver/spring_block.h"
 #include "tumble/solver/spring_row.h"
@@ -168,9 +169,11 @@ public:
     /// into `constraints` for warm starting the next step. Allocates only when the arrays grow.
     /// Implicit spring rows (spring_row.h), when given, are solved first in every biased and
     /// relax sweep alike (they are forces, not stabilisation); their impulses are written back.
+    /// Joint rows (joint_row.h), when given, are solved after the springs and before the
+    /// contacts in every sweep, with the same bias as the contacts; impulses written back.
     SolverStats solve(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                       std::vector<PseudoVelocity>& pseudo, Real h, const SolverSettings& settings,
-                      std::span<SpringRow> springs = {});
+                      std::span<SpringRow> springs = {}, std::span<JointRow> joints = {});
 
 private:
     void prepare(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints, Real h,
@@ -196,6 +199,13 @@ private:
 
     SpringBlockSolver springBlock_;
     bool directSprings_ = false;  ///< this step's springs go through springBlock_
+    /// Split impulse's position pass for the joints (solveJointPositions) on `pseudo`.
+    void correctJoints(std::span<const SolverBody> bodies, std::vector<PseudoVelocity>& pseudo,
+                       Real inverseH, const SolverSettings& settings);
+
+    std::span<JointRow> joints_;            ///< of the solve in progress
+    Real jointBias_ = 0;                    ///< their bias in the velocity sweeps (Baumgarte only)
+    std::vector<SolverBody> pseudoBodies_;  ///< the joints' position pass works on these
 };
 
 }  // namespace tumble

@@ -1,0 +1,137 @@
+#pragma once
+/// Joints as constraint rows, solved by the contact solver's PGS sweeps before the contacts,
+/// with the same warm starting and stabilisation.
+///
+/// Every joint has one block of equality rows, solved exactly in each sweep (so a ball joint has
+/// no order bias between its directions, and a weld on a long lever with a small inertia, whose
+/// linear and angular rows are strongly coupled, holds: solved as two blocks one after the
+/// other, such a weld did not converge and gained energy), plus an axial row:
+///
+/// - point rows (ball, hinge, fixed): the anchors coincide. J v = vB + wB x rB - vA - wA x rA,
+///   K = (1/mA + 1/mB) 1 - [rA]x IA^-1 [rA]x - [rB]x IB^-1 [rB]x, C = pB - pA (3 rows).
+/// - perpendicular rows (slider): B's anchor stays on A's axis: the same rows along the two
+///   directions t1, t2 normal to the axis, with A's lever arm rA + d (d = pB - pA), C = t . d.
+/// - angular rows: hinge: wB - wA has no component normal to the axis (2 rows, C = the
+///   rotation taking A's axis to B's, normal part); fixed and slider: wB - wA = 0 (3 rows, C =
+///   the rotation vector from the relative orientation at creation to the current one).
+///   K = IA^-1 + IB^-1, projected on the rows.
+/// - axial row (one Jacobian, up to three uses): hinge: axis . (wB - wA); slider: the linear
+///   velocity along the axis; distance: along the line between the anchors. It carries the
+///   motor (J v -> target speed, |impulse| <= maxMotorForce h), the lower and upper limits
+///   (one-sided, like a contact: lambda >= 0 at the lower limit, <= 0 at the upper), or, when
+///   lower == upper (a rod, a locked hinge), one equality row.
+///
+/// Stabilisation. Under split impulse (the default) the velocity sweeps carry no position error
+/// at all: after them, solveJointPositions runs its own Gauss-Seidel sweeps on the
+/// pseudo-velocities, aiming to remove beta C within the step (beta = splitImpulseFactor), and
+/// the pseudo-velocities move the bodies this step only. Sharing the contacts' scheme (the bias
+/// in the biased sweeps, taken out again by the relax sweeps) was tried first: on a chain the
+/// relax sweeps do not converge, the rest of the bias stayed in the real velocity and in the
+/// warm start, and a 20-link chain hanging at rest gained energy until it exploded (as it does
+/// under Baumgarte with 10 iterations). Under Baumgarte the target -beta C / h stays in every
+/// velocity sweep (beta = baumgarte), for the study's comparison. A limit not yet reached
+/// (C > 0) is speculative, as a contact gap: J v >= -C / h in every sweep.
+///
+/// Curvature. Semi-implicit Euler moves an anchor on a spinning body along the chord, so even a
+/// row satisfied exactly in velocity drifts by ~h^2 |w|^2 r / 2 per step. Removing that drift as
+/// a position error afterwards loses kinetic energy at every step (a rod pendulum released at
+/// 170 deg swung with half its period); so the drift, predicted from the current velocities in
+/// every sweep, is part of each row's target in the real velocity: the constraint holds at the
+/// end of the step, as in SHAKE, whose energy error stays bounded. The error left is O(h^3).
+///
+/// Deterministic: joints are solved in array order.
+
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <span>
+
+#include "tumble/solver/solver_body.h"
+
+namespace tumble {
+
+enum class JointType : std::uint8_t {
+    Ball,      ///< point coincidence: 3 linear rows
+    Hinge,     ///< ball + 2 angular rows: rotation about one axis only (revolute)
+    Slider,    ///< 2 linear + 3 angular rows: translation along one axis only (prismatic)
+    Fixed,     ///< ball + 3 angular rows: weld
+    Distance,  ///< one row along the line between the anchors: rod (equality) or rope (max)
+};
+
+struct JointRow {
+    JointType type = JointType::Ball;
+    std::uint32_t bodyA = 0;  ///< index into the solver's body array
+    std::uint32_t bodyB = 0;
+    Vec3 rA = Vec3::Zero();          ///< from A's centre of mass to its anchor (world, m)
+    Vec3 rB = Vec3::Zero();          ///< from B's centre of mass to its anchor (world, m)
+    Vec3 separation = Vec3::Zero();  ///< anchor B - anchor A at the start of the step (world, m)
+    /// Hinge, slider: the joint axis fixed in A (world, unit); distance: the direction used
+    /// when the anchors coincide.
+    Vec3 axis = Vec3::UnitZ();
+    /// Rotation vector (rad, world): hinge: taking A's axis to B's (only the part normal to the
+    /// axis is used); fixed, slider: from the orientation B should have relative to A to the one
+    /// it has.
+    Vec3 angularError = Vec3::Zero();
+    /// The axial coordinate at the start of the step: hinge angle (rad), slider translation
+    /// along the axis (m), distance between the anchors (m).
+    Real position = 0;
+    Real lower = -std::numeric_limits<Real>::infinity();  ///< limit on position; -inf: none
+    Real upper = std::numeric_limits<Real>::infinity();   ///< limit on position; +inf: none
+    bool motor = false;
+    Real motorSpeed = 0;     ///< target d(position)/dt (rad/s or m/s)
+    Real maxMotorForce = 0;  ///< torque (N m) or force (N) cap, >= 0
+
+    // Accumulated impulses, on B (A gets the opposite): warm start in, result out.
+    Vec3 linearImpulse = Vec3::Zero();   ///< point or perpendicular block (N s, world)
+    Vec3 angularImpulse = Vec3::Zero();  ///< angular block (N m s, world)
+    Real motorImpulse = 0;               ///< axial motor row (N s or N m s)
+    Real lowerImpulse = 0;               ///< lower limit row, >= 0; or the equality row
+    Real upperImpulse = 0;               ///< upper limit row, <= 0
+
+    // Filled by prepareJointRows().
+    bool active = false;  ///< false when neither body can move
+    int linearRows = 0;   ///< equality rows on the anchors' relative velocity, along directions
+    int angularRows = 0;  ///< then equality rows on the relative spin, along directions
+    std::array<Vec3, 6> directions{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(),
+                                   Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};  ///< unit, world:
+    ///< the linear rows' directions, then the angular rows'
+    /// Inverse of the equality rows' block K = J M^-1 J' (the first linearRows + angularRows
+    /// rows and columns; zero elsewhere).
+    Eigen::Matrix<Real, 6, 6> blockInverse = Eigen::Matrix<Real, 6, 6>::Zero();
+    Eigen::Matrix<Real, 6, 1> error = Eigen::Matrix<Real, 6, 1>::Zero();  ///< C per row (m, rad)
+    Vec3 pointDrift = Vec3::Zero();     ///< predicted second-order drift of anchor B - anchor A (m)
+    Vec3 leverA = Vec3::Zero();         ///< A's lever arm: rA, or rA + d for the slider (m)
+    Vec3 axialLinear = Vec3::Zero();    ///< linear part of the axial Jacobian (unit or zero)
+    Vec3 axialAngularA = Vec3::Zero();  ///< A's angular part (m, or 1 for the hinge)
+    Vec3 axialAngularB = Vec3::Zero();
+    Real axialMass = 0;    ///< 1 / (J M^-1 J') of the axial row
+    Real axialDrift = 0;   ///< predicted second-order drift of position (m)
+    Real pseudoLower = 0;  ///< position pass: lower limit (or equality) impulse, this step only
+    Real pseudoUpper = 0;  ///< position pass: upper limit impulse, this step only
+};
+
+/// Jacobians, effective masses and drift predictions for a step of length h; applies the
+/// warm-start impulses (or zeroes them when !warmStart). Motor impulses are capped by the
+/// force cap of this step.
+void prepareJointRows(std::span<SolverBody> bodies, std::span<JointRow> rows, Real h,
+                      bool warmStart);
+
+/// One Gauss-Seidel pass over the joints: per joint the motor, the limits, the angular block,
+/// then the point block (what matters most last). `bias` is beta (0 in the relax sweeps);
+/// returns the largest change of a row's velocity caused by an update (m/s or rad/s).
+Real solveJointRows(std::span<SolverBody> bodies, std::span<JointRow> rows, Real relaxation,
+                    Real bias, Real inverseH);
+
+/// Split impulse's position pass for joints: `sweeps` Gauss-Seidel sweeps on the
+/// pseudo-velocities (held in `pseudoBodies`, with the real bodies' masses) that remove `bias`
+/// (beta) of every position error within the step. Run after the velocity solve, cold-started:
+/// the correction moves positions and never enters the real velocity or the warm start.
+void solveJointPositions(std::span<SolverBody> pseudoBodies, std::span<JointRow> rows, Real bias,
+                         Real inverseH, int sweeps);
+
+/// What a joint's impulses of the last solve mean as a reaction on B over a step of length h:
+/// force (N, world) and torque about the anchor (N m, world).
+Vec3 jointReactionForce(const JointRow& row, Real h);
+Vec3 jointReactionTorque(const JointRow& row, Real h);
+
+}  // namespace tumble

@@ -1,0 +1,328 @@
+// Joints: what each type holds, limits, motors, breaking, collision filtering, islands, and the
+// refusals of bad definitions.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include "refusal.h"
+#include "tumble/world.h"
+
+namespace tumble {
+namespace {
+
+using test::contains;
+using test::refusal;
+
+constexpr Real kGravity = 9.81;
+
+WorldDef quietWorld(Real h = 1.0 / 60.0) {
+    WorldDef def;
+    def.gravity = Vec3(0, 0, -kGravity);
+    def.timeStep = h;
+    def.enableSleep = false;
+    return def;
+}
+
+BodyId addBody(World& world, const Vec3& position, Real mass = 1,
+               BodyType type = BodyType::Dynamic) {
+    BodyDef def;
+    def.type = type;
+    def.position = position;
+    def.mass.mass = mass;
+    def.mass.inertia = Mat3::Identity() * 0.1 * mass;
+    return world.createBody(def);
+}
+
+void run(World& world, int steps) {
+    for (int i = 0; i < steps; ++i)
+        ASSERT_TRUE(world.step().ok());
+}
+
+// A mass hanging at rest on a ball joint: the anchor holds and the reaction is the weight.
+TEST(Joints, BallJointCarriesTheWeight) {
+    World world(quietWorld());
+    const BodyId body = addBody(world, Vec3(0, 0, -1), 2);
+    const JointId joint = world.createJoint(
+        JointDef{.type = JointType::Ball, .bodyA = body, .bodyB = {}, .anchor = Vec3::Zero()});
+    run(world, 120);
+    EXPECT_NEAR(world.position(body).z(), -1, 1e-9);
+    EXPECT_NEAR(world.position(body).x(), 0, 1e-9);
+    // On B (the world) the joint pulls down with the weight A hangs on it.
+    EXPECT_NEAR(world.jointState(joint).force.z(), -2 * kGravity, 1e-6);
+}
+
+// A weld to the world on a long lever: the body does not move at all.
+TEST(Joints, FixedJointHoldsPoseOnALongLever) {
+    World world(quietWorld());
+    const BodyId body = addBody(world, Vec3(1, 0, 0), 1);
+    world.createJoint(
+        JointDef{.type = JointType::Fixed, .bodyA = body, .bodyB = {}, .anchor = Vec3::Zero()});
+    run(world, 300);
+    EXPECT_LT((world.position(body) - Vec3(1, 0, 0)).norm(), 1e-6);
+    EXPECT_LT(world.orientation(body).angularDistance(Quat::Identity()), 1e-6);
+    EXPECT_LT(world.linearVelocity(body).norm(), 1e-6);
+}
+
+// A hinge about y with limits [-0.3, 0.3] rad, pushed by gravity beyond the upper one: it stops
+// there (to the split-impulse slack of one step's motion).
+TEST(Joints, HingeLimitStopsTheSwing) {
+    World world(quietWorld());
+    const BodyId body = addBody(world, Vec3(1, 0, 0), 1);
+    const JointId hinge = world.createJoint(JointDef{.type = JointType::Hinge,
+                                                     .bodyA = body,
+                                                     .bodyB = {},
+                                                     .anchor = Vec3::Zero(),
+                                                     .axis = Vec3::UnitY(),
+                                                     .enableLimit = true,
+                                                     .lower = -0.3,
+                                                     .upper = 0.3});
+    // Gravity turns the bar about +y (x toward -z): positive angles of B relative to A are
+    // negative ones of A relative to the world (B), so the lower limit is the one reached.
+    Real extreme = 0;
+    for (int i = 0; i < 240; ++i) {
+        ASSERT_TRUE(world.step().ok());
+        extreme = std::max(extreme, std::abs(world.jointState(hinge).position));
+    }
+    EXPECT_LT(extreme, 0.3 + 0.01);
+    EXPECT_NEAR(std::abs(world.jointState(hinge).position), 0.3, 2e-3);
+    EXPECT_NEAR((world.position(body)).norm(), 1, 1e-6);  // the anchor still holds
+}
+
+// A slider along z under gravity with a lower limit of -0.5 m: it falls freely along the axis,
+// then rests on the limit; sideways it does not move.
+TEST(Joints, SliderFallsAlongItsAxisToTheLimit) {
+    World world(quietWorld());
+    const BodyId body = addBody(world, Vec3(0.2, 0, 0), 1);
+    const JointId slider = world.createJoint(JointDef{.type = JointType::Slider,
+                                                      .bodyA = body,
+                                                      .bodyB = {},
+                                                      .anchor = Vec3(0.2, 0, 0),
+                                                      .axis = Vec3::UnitZ(),
+                                                      .enableLimit = true,
+                                                      .lower = -0.5,
+                                                      .upper = 0.5});
+    run(world, 12);  // 0.2 s: free fall of g t^2 / 2 = 0.196 m, within the limit
+    const Real t = 0.2;
+    // Semi-implicit Euler: z_n = -g h^2 n (n + 1) / 2.
+    EXPECT_NEAR(world.position(body).z(), -kGravity * (1.0 / 3600) * 12 * 13 / 2, 1e-9);
+    EXPECT_NEAR(world.jointState(slider).speed, kGravity * t, 1e-9);  // A moves -z: B's +
+    run(world, 120);
+    EXPECT_NEAR(world.position(body).z(), -0.5, 2e-3);
+    EXPECT_NEAR(world.position(body).x(), 0.2, 1e-9);
+    EXPECT_NEAR(world.position(body).y(), 0, 1e-9);
+}
+
+// A rope (one-sided distance) lets the mass come closer but not farther; a rod holds both ways.
+TEST(Joints, RopeIsSlackWhenShortRodIsNot) {
+    World world(quietWorld());
+    const BodyId roped = addBody(world, Vec3(0, 0, -0.5), 1);
+    const BodyId rodded = addBody(world, Vec3(3, 0, -0.5), 1);
+    world.setLinearVelocity(roped, Vec3(0, 0, 2));
+    world.setLinearVelocity(rodded, Vec3(0, 0, 2));
+    world.createJoint(JointDef{.type = JointType::Distance,
+                               .bodyA = roped,
+                               .bodyB = {},
+                               .anchor = Vec3(0, 0, -0.5),
+                               .anchorB = Vec3(0, 0, 0.5),
+                               .length = 1,
+                               .rope = true});
+    world.createJoint(JointDef{.type = JointType::Distance,
+                               .bodyA = rodded,
+                               .bodyB = {},
+                               .anchor = Vec3(3, 0, -0.5),
+                               .anchorB = Vec3(3, 0, 0.5)});
+    run(world, 6);  // 0.1 s: thrown up by 2 m/s, the rope goes slack
+    EXPECT_GT(world.position(roped).z(), -0.4);
+    EXPECT_NEAR(world.position(rodded).z(), -0.5, 1e-9);
+    run(world, 120);
+    EXPECT_NEAR(world.position(roped).z(), -0.5, 1e-3);  // taut again, hanging
+}
+
+TEST(Joints, BreaksAboveItsForceAndReleasesTheBody) {
+    World world(quietWorld());
+    const BodyId body = addBody(world, Vec3(0, 0, -1), 1);
+    const JointId joint = world.createJoint(JointDef{.type = JointType::Ball,
+                                                     .bodyA = body,
+                                                     .bodyB = {},
+                                                     .anchor = Vec3::Zero(),
+                                                     .breakForce = 5});
+    ASSERT_TRUE(world.step().ok());
+    EXPECT_TRUE(world.jointState(joint).broken);
+    const Real z = world.position(body).z();
+    run(world, 30);
+    EXPECT_LT(world.position(body).z(), z - 1);  // falling freely
+    EXPECT_TRUE(world.isValid(joint));
+}
+
+TEST(Joints, HoldsBelowItsBreakForce) {
+    World world(quietWorld());
+    const BodyId body = addBody(world, Vec3(0, 0, -1), 1);
+    const JointId joint = world.createJoint(JointDef{.type = JointType::Ball,
+                                                     .bodyA = body,
+                                                     .bodyB = {},
+                                                     .anchor = Vec3::Zero(),
+                                                     .breakForce = 12});
+    run(world, 60);
+    EXPECT_FALSE(world.jointState(joint).broken);
+}
+
+// Overlapping jointed boxes do not collide unless asked; a shape added later is filtered too;
+// destroying the joint lets them collide again.
+TEST(Joints, ConnectedBodiesDoNotCollideUnlessAsked) {
+    WorldDef settings = quietWorld();
+    settings.gravity = Vec3::Zero();
+    World world(settings);
+    const BodyId a = addBody(world, Vec3(0, 0, 0));
+    const BodyId b = addBody(world, Vec3(0.5, 0, 0));
+    world.createShape(a, ShapeDef{.geometry = Box{Vec3(0.5, 0.5, 0.5)}});
+    world.createShape(b, ShapeDef{.geometry = Box{Vec3(0.5, 0.5, 0.5)}});
+    const JointId joint = world.createJoint(
+        JointDef{.type = JointType::Ball, .bodyA = a, .bodyB = b, .anchor = Vec3(0.25, 0, 0)});
+    world.createShape(b, ShapeDef{.geometry = Sphere{0.4}, .updateBodyMass = false});
+    run(world, 3);
+    EXPECT_TRUE(world.contacts().empty());
+    EXPECT_LT((world.position(b) - world.position(a) - Vec3(0.5, 0, 0)).norm(), 1e-9);
+    world.destroyJoint(joint);
+    run(world, 1);
+    EXPECT_FALSE(world.contacts().empty());
+
+    World other(settings);
+    const BodyId c = addBody(other, Vec3(0, 0, 0));
+    const BodyId d = addBody(other, Vec3(0.5, 0, 0));
+    other.createShape(c, ShapeDef{.geometry = Box{Vec3(0.5, 0.5, 0.5)}});
+    other.createShape(d, ShapeDef{.geometry = Box{Vec3(0.5, 0.5, 0.5)}});
+    other.createJoint(JointDef{.type = JointType::Ball,
+                               .bodyA = c,
+                               .bodyB = d,
+                               .anchor = Vec3(0.25, 0, 0),
+                               .collideConnected = true});
+    run(other, 1);
+    EXPECT_FALSE(other.contacts().empty());
+}
+
+// A jointed pair falls asleep together, and waking one wakes the other.
+TEST(Joints, JointedBodiesShareAnIsland) {
+    WorldDef settings = quietWorld();
+    settings.enableSleep = true;
+    World world(settings);
+    const BodyId ground = addBody(world, Vec3::Zero(), 1, BodyType::Static);
+    world.createShape(ground, ShapeDef{.geometry = HalfSpace{}});
+    const BodyId a = addBody(world, Vec3(0, 0, 0.5));
+    const BodyId b = addBody(world, Vec3(3, 0, 0.5));
+    world.createShape(a, ShapeDef{.geometry = Box{Vec3(0.5, 0.5, 0.5)}});
+    world.createShape(b, ShapeDef{.geometry = Box{Vec3(0.5, 0.5, 0.5)}});
+    world.createJoint(JointDef{.type = JointType::Distance,
+                               .bodyA = a,
+                               .bodyB = b,
+                               .anchor = Vec3(0, 0, 0.5),
+                               .anchorB = Vec3(3, 0, 0.5)});
+    run(world, 120);
+    ASSERT_FALSE(world.isAwake(a));
+    ASSERT_FALSE(world.isAwake(b));
+    world.applyLinearImpulse(a, Vec3(0, 1, 0), world.centerOfMass(a));
+    EXPECT_TRUE(world.isAwake(a));
+    run(world, 1);
+    EXPECT_TRUE(world.isAwake(b));
+}
+
+TEST(Joints, DestroyingABodyDestroysItsJoints) {
+    World world(quietWorld());
+    const BodyId a = addBody(world, Vec3::Zero());
+    const BodyId b = addBody(world, Vec3(1, 0, 0));
+    const JointId joint = world.createJoint(
+        JointDef{.type = JointType::Ball, .bodyA = a, .bodyB = b, .anchor = Vec3(0.5, 0, 0)});
+    world.destroyBody(b);
+    EXPECT_FALSE(world.isValid(joint));
+    EXPECT_EQ(world.jointCount(), 0);
+    run(world, 2);
+}
+
+TEST(Joints, BadDefinitionsAreRefusedByName) {
+    World world(quietWorld());
+    const BodyId a = addBody(world, Vec3::Zero());
+    const BodyId gone = addBody(world, Vec3(1, 0, 0));
+    world.destroyBody(gone);
+    const BodyId ground = addBody(world, Vec3::Zero(), 1, BodyType::Static);
+    const auto refused = [&](JointDef def) { return refusal([&] { world.createJoint(def); }); };
+
+    EXPECT_TRUE(contains(refused(JointDef{}), "JointDef.bodyA is null"));
+    EXPECT_TRUE(contains(refused(JointDef{.bodyA = gone, .bodyB = {}}), "JointDef.bodyA"));
+    EXPECT_TRUE(contains(refused(JointDef{.bodyA = gone, .bodyB = {}}), "not a live body"));
+    EXPECT_TRUE(contains(refused(JointDef{.bodyA = a, .bodyB = gone}), "JointDef.bodyB"));
+    EXPECT_TRUE(contains(refused(JointDef{.bodyA = a, .bodyB = a}), "same body"));
+    EXPECT_TRUE(contains(refused(JointDef{.bodyA = ground, .bodyB = {}}), "neither body"));
+    EXPECT_TRUE(contains(
+        refused(JointDef{.type = JointType::Hinge, .bodyA = a, .bodyB = {}, .axis = Vec3::Zero()}),
+        "JointDef.axis"));
+    EXPECT_TRUE(contains(
+        refused(JointDef{.type = JointType::Slider, .bodyA = a, .bodyB = {}, .axis = Vec3::Zero()}),
+        "must be non-zero"));
+    EXPECT_TRUE(contains(refused(JointDef{.type = JointType::Hinge,
+                                          .bodyA = a,
+                                          .bodyB = {},
+                                          .enableLimit = true,
+                                          .lower = 0.5,
+                                          .upper = -0.5}),
+                         "lower = 0.5 > upper = -0.5"));
+    EXPECT_TRUE(contains(refused(JointDef{.type = JointType::Hinge,
+                                          .bodyA = a,
+                                          .bodyB = {},
+                                          .enableLimit = true,
+                                          .lower = -4,
+                                          .upper = 0}),
+                         "[-pi, pi]"));
+    EXPECT_TRUE(contains(refused(JointDef{.type = JointType::Hinge,
+                                          .bodyA = a,
+                                          .bodyB = {},
+                                          .enableMotor = true,
+                                          .maxMotorForce = -1}),
+                         "JointDef.maxMotorForce = -1"));
+    EXPECT_TRUE(
+        contains(refused(JointDef{.bodyA = a, .bodyB = {}, .breakForce = 0}), "breakForce"));
+    EXPECT_TRUE(contains(
+        refused(JointDef{
+            .bodyA = a, .bodyB = {}, .breakTorque = std::numeric_limits<Real>::quiet_NaN()}),
+        "breakTorque"));
+    EXPECT_TRUE(contains(refused(JointDef{.type = JointType::Distance, .bodyA = a, .bodyB = {}}),
+                         "length is 0"));
+    EXPECT_TRUE(contains(
+        refused(JointDef{
+            .bodyA = a, .bodyB = {}, .anchor = Vec3(std::numeric_limits<Real>::infinity(), 0, 0)}),
+        "JointDef.anchor"));
+    EXPECT_EQ(world.jointCount(), 0);
+
+    const JointId ball = world.createJoint(
+        JointDef{.type = JointType::Ball, .bodyA = a, .bodyB = {}, .anchor = Vec3::Zero()});
+    EXPECT_TRUE(contains(refusal([&] { world.setJointMotor(ball, true, 1, 1); }), "no motor"));
+    EXPECT_TRUE(
+        contains(refusal([&] { world.setJointMotor(ball, false, 1, -2); }), "maxMotorForce = -2"));
+    EXPECT_TRUE(contains(refusal([&] { world.jointState(JointId{}); }), "JointId"));
+}
+
+// Same scene, same results, bit for bit.
+TEST(Joints, Deterministic) {
+    const auto simulate = [] {
+        World world(quietWorld());
+        BodyId previous;
+        for (int i = 0; i < 5; ++i) {
+            const BodyId link = addBody(world, Vec3(0.5 + i, 0, 0));
+            world.createJoint(JointDef{.type = JointType::Hinge,
+                                       .bodyA = link,
+                                       .bodyB = previous,
+                                       .anchor = Vec3(i, 0, 0),
+                                       .axis = Vec3(0, 1, 0.1)});
+            previous = link;
+        }
+        for (int i = 0; i < 120; ++i)
+            world.step();
+        return world.position(previous);
+    };
+    EXPECT_EQ(simulate(), simulate());
+}
+
+}  // namespace
+}  // namespace tumble

@@ -1,0 +1,143 @@
+// five-body-pendulum: the multi-body pendulum of the Newton engine's paper -- a base link, three
+// links and a ball joined by ball-and-socket joints -- swings undamped for 10 s at h = 1/240; its
+// mechanical energy must drift by less than 1 %.
+//
+// Base: a static box; links: boxes 0.5 x 0.05 x 0.05 m of 1 kg; ball: a 2 kg sphere of radius
+// 0.1 m. The chain starts straight and horizontal (every joint on the x axis, the ball's centre
+// 0.1 m beyond the last joint), at rest, and falls: a chaotic, whipping motion. Energy:
+// kinetic plus m g z, measured against its initial value and scaled by what the chain can give
+// up, E0 - E_rest (E_rest: everything hanging straight down at rest), so the drift does not
+// depend on where z = 0 is.
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "../case.h"
+#include "tumble/tumble.h"
+
+namespace tumble::validation {
+namespace {
+
+constexpr double kGravity = 9.81;
+constexpr double kLinkLength = 0.5;
+constexpr double kLinkMass = 1;
+constexpr double kBallMass = 2;
+constexpr double kBallRadius = 0.1;
+
+struct Drift {
+    double scale = 0;       // E0 - E_rest (J)
+    double final = 0;       // |E - E0| / scale at the end
+    double worst = 0;       // largest |E - E0| / scale
+    double separation = 0;  // largest ball-joint separation (m)
+    bool finite = true;
+};
+
+Drift swing(double seconds, int iterations) {
+    const double h = 1.0 / 240.0;
+    WorldDef settings;
+    settings.gravity = Vec3(0, 0, -kGravity);
+    settings.timeStep = h;
+    settings.enableSleep = false;
+    settings.solver.iterations = iterations;
+    settings.solver.relaxIterations = iterations;
+    World world(settings);
+    BodyDef baseDef;
+    baseDef.type = BodyType::Static;
+    baseDef.position = Vec3(-0.05, 0, 0);
+    const BodyId base = world.createBody(baseDef);
+    world.createShape(base, ShapeDef{.geometry = Box{Vec3(0.05, 0.05, 0.05)}});
+
+    std::vector<BodyId> moving;
+    std::vector<double> masses;
+    BodyId previous = base;
+    double x = 0;
+    for (int i = 0; i < 3; ++i) {
+        BodyDef def;
+        def.position = Vec3(x + 0.5 * kLinkLength, 0, 0);
+        def.mass.mass = kLinkMass;
+        const double a = kLinkLength;
+        const double b = 0.05;
+        def.mass.inertia =
+            (Vec3(2 * b * b, a * a + b * b, a * a + b * b) * (kLinkMass / 12)).asDiagonal();
+        const BodyId link = world.createBody(def);
+        world.createJoint(JointDef{
+            .type = JointType::Ball, .bodyA = link, .bodyB = previous, .anchor = Vec3(x, 0, 0)});
+        moving.push_back(link);
+        masses.push_back(kLinkMass);
+        previous = link;
+        x += kLinkLength;
+    }
+    BodyDef ballDef;
+    ballDef.position = Vec3(x + kBallRadius, 0, 0);
+    ballDef.mass.mass = kBallMass;
+    ballDef.mass.inertia = Mat3::Identity() * (0.4 * kBallMass * kBallRadius * kBallRadius);
+    const BodyId ball = world.createBody(ballDef);
+    world.createJoint(JointDef{
+        .type = JointType::Ball, .bodyA = ball, .bodyB = previous, .anchor = Vec3(x, 0, 0)});
+    moving.push_back(ball);
+    masses.push_back(kBallMass);
+
+    const auto energy = [&] {
+        double e = world.kineticEnergy();
+        for (std::size_t i = 0; i < moving.size(); ++i)
+            e += masses[i] * kGravity * world.centerOfMass(moving[i]).z();
+        return e;
+    };
+    // Hanging straight down from the base joint at the origin.
+    double restEnergy = 0;
+    for (int i = 0; i < 3; ++i)
+        restEnergy -= kLinkMass * kGravity * (i + 0.5) * kLinkLength;
+    restEnergy -= kBallMass * kGravity * (3 * kLinkLength + kBallRadius);
+    const double initial = energy();
+    const double scale = initial - restEnergy;
+
+    const int steps = static_cast<int>(std::round(seconds / h));
+    double worst = 0;
+    double worstSeparation = 0;
+    bool finite = true;
+    for (int i = 1; i <= steps && finite; ++i) {
+        finite = world.step().ok();
+        worst = std::max(worst, std::abs(energy() - initial) / scale);
+        const Vec3 ballAnchor = world.transform(ball).apply(Vec3(-kBallRadius, 0, 0));
+        const Vec3 linkEnd = world.transform(moving[2]).apply(Vec3(0.5 * kLinkLength, 0, 0));
+        worstSeparation = std::max(worstSeparation, (ballAnchor - linkEnd).norm());
+    }
+    return Drift{scale, std::abs(energy() - initial) / scale, worst, worstSeparation, finite};
+}
+
+CaseResult run(const CaseOptions& options) {
+    CaseResult r;
+    const double seconds = options.fast ? 3 : 10;
+    const Drift d = swing(seconds, 10);
+    r.metric("simulated time (s)", seconds);
+    r.metric("E0 - E_rest (J)", d.scale);
+    r.metric("energy drift at the end (rel.)", d.final);
+    r.metric("largest energy deviation (rel.)", d.worst);
+    r.metric("largest ball-joint separation (mm)", 1e3 * d.separation);
+    if (!options.fast) {
+        for (const int iterations : {20, 40, 80}) {
+            const Drift more = swing(seconds, iterations);
+            r.table.push_back({{{"iterations", double(iterations)},
+                                {"end drift", more.final},
+                                {"largest dev.", more.worst}}});
+        }
+    }
+    r.tolerance("energy drift (rel.)", 0.01);
+    r.check(d.finite, "the pendulum went non-finite");
+    r.check(d.worst < 0.01,
+            "energy deviated by " + std::to_string(100 * d.worst) + " % (tolerance 1 %)");
+    return r;
+}
+
+}  // namespace
+
+ValidationCase fiveBodyPendulumCase() {
+    return {"five-body-pendulum",
+            "base, three links and a ball on ball joints swing 10 s undamped at h = 1/240: energy "
+            "within 1 %",
+            run};
+}
+
+}  // namespace tumble::validation
