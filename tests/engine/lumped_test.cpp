@@ -1,0 +1,178 @@
+// String and net generators: what they build, the physics of the result, and the refusals.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "refusal.h"
+#include "tumble/lumped.h"
+#include "tumble/world.h"
+
+namespace tumble {
+namespace {
+
+using test::contains;
+using test::refusal;
+
+WorldDef settings(Vec3 gravity = Vec3(0, 0, -9.81)) {
+    WorldDef def;
+    def.gravity = gravity;
+    def.enableSleep = false;
+    return def;
+}
+
+TEST(Net, BuildsNodesThreadsAndCorners) {
+    World world(settings());
+    NetDef def;
+    def.rows = 4;
+    def.columns = 3;
+    def.meshSize = 0.2;
+    def.center = Vec3(1, 2, 3);
+    def.node.mass = 0.05;
+    def.cornerMass = 0.5;
+    const Lumped net = createNet(world, def);
+    ASSERT_EQ(net.nodes.size(), 12u);
+    EXPECT_EQ(net.threads.size(), static_cast<std::size_t>(4 * 2 + 3 * 3));
+    EXPECT_EQ(world.springCount(), 17);
+    // Centred on `center`, in the x-y plane, rows along x.
+    EXPECT_TRUE(world.position(net.nodes[0]).isApprox(Vec3(0.7, 1.8, 3), 1e-12));
+    EXPECT_TRUE(world.position(net.nodes[11]).isApprox(Vec3(1.3, 2.2, 3), 1e-12));
+    EXPECT_EQ(net.corners[3], net.nodes[11]);
+    EXPECT_DOUBLE_EQ(world.massProperties(net.corners[0]).mass, 0.5);
+    EXPECT_DOUBLE_EQ(world.massProperties(net.nodes[1]).mass, 0.05);
+    for (const SpringId thread : net.threads) {
+        EXPECT_DOUBLE_EQ(world.springDef(thread).restLength, 0.2);
+        EXPECT_DOUBLE_EQ(world.springDef(thread).stiffness, def.thread.axialRigidity / 0.2);
+        EXPECT_TRUE(world.springDef(thread).tensionOnly);
+    }
+}
+
+// Thrown open: every node moves away from the centre in the net's plane at a speed in proportion
+// to its distance, the corners at spreadSpeed, on top of the common velocity.
+TEST(Net, ThrownOpenSpreadsFromTheCentre) {
+    World world(settings());
+    NetDef def;
+    def.rows = 5;
+    def.columns = 5;
+    def.meshSize = 0.1;
+    def.velocity = Vec3(0, 0, 3);
+    def.spreadSpeed = 2;
+    const Lumped net = createNet(world, def);
+    const Vec3 corner = world.linearVelocity(net.corners[0]);
+    EXPECT_NEAR((corner - def.velocity).norm(), 2, 1e-12);
+    EXPECT_NEAR(corner.z(), 3, 1e-12);
+    EXPECT_TRUE(world.linearVelocity(net.nodes[12]).isApprox(def.velocity, 1e-12));  // centre
+    EXPECT_TRUE(world.position(net.corners[0])
+                    .normalized()
+                    .isApprox((corner - def.velocity).normalized(), 1e-12));
+}
+
+// A net dropped flat with nothing below falls as one body: threads neither stretch nor fight
+// (implicit and explicit alike), and the net's centre of mass falls at g.
+TEST(Net, DroppedFlatFallsLikeOneBody) {
+    for (const SpringFormulation f : {SpringFormulation::Implicit, SpringFormulation::Explicit}) {
+        World world(settings());
+        NetDef def;
+        def.rows = 6;
+        def.columns = 6;
+        def.thread.formulation = f;
+        def.thread.axialRigidity = 1;  // omega_e h = 0.53: within the explicit limit
+        const Lumped net = createNet(world, def);
+        for (int i = 0; i < 60; ++i)
+            ASSERT_TRUE(world.step().ok());
+        for (const SpringId thread : net.threads)
+            EXPECT_NEAR(world.springState(thread).length, def.meshSize, 1e-9);
+        // Semi-implicit Euler: z_n = -g h^2 n (n + 1) / 2.
+        const Real h = WorldDef{}.timeStep;
+        EXPECT_NEAR(world.position(net.nodes[14]).z(), -9.81 * h * h * 60 * 61 / 2, 1e-9);
+    }
+}
+
+// A string hanging from a point (with drag, so its swing dies out) comes to rest straight down
+// with its top thread carrying the weight of every node.
+TEST(String, HangsWithTheWeightOfItsNodes) {
+    World world(settings());
+    StringDef def;
+    def.start = Vec3(0, 0, 2);
+    def.end = Vec3(0.5, 0, 2);  // starts horizontal
+    def.count = 10;
+    def.node.mass = 0.02;
+    def.thread.damping = 0.5;
+    const Lumped string = createString(world, def);
+    for (const BodyId node : string.nodes)
+        world.setDrag(node, Drag{0.05, 0, Mat3::Identity()});  // the swing settles in seconds
+    ASSERT_EQ(string.nodes.size(), 10u);
+    ASSERT_EQ(string.threads.size(), 10u);
+    for (int i = 0; i < 60 * 30; ++i)
+        ASSERT_TRUE(world.step().ok());
+    const Real weight = 10 * 0.02 * 9.81;
+    EXPECT_NEAR(world.springState(string.threads[0]).tension, weight, 1e-3 * weight);
+    EXPECT_NEAR(world.position(string.nodes.back()).x(), 0, 1e-3);
+    EXPECT_LT(world.position(string.nodes.back()).z(), 2 - 0.45);
+}
+
+TEST(String, BetweenTwoFixedPointsUnderTension) {
+    World world(settings(Vec3::Zero()));
+    StringDef def;
+    def.start = Vec3(0, 0, 0);
+    def.end = Vec3(1, 0, 0);
+    def.count = 9;
+    def.fixedEnd = true;
+    def.restLengthRatio = 0.9;
+    def.thread.axialRigidity = 100;
+    const Lumped string = createString(world, def);
+    EXPECT_EQ(string.threads.size(), 10u);
+    EXPECT_TRUE(world.position(string.nodes[0]).isApprox(Vec3(0.1, 0, 0), 1e-12));
+    ASSERT_TRUE(world.step().ok());
+    // Every segment 0.1 m against a rest length of 0.09 m: T = E A (L - L0) / L0.
+    const Real tension = 100 * (0.1 - 0.09) / 0.09;
+    for (const SpringId thread : string.threads)
+        EXPECT_NEAR(world.springState(thread).tension, tension, 1e-6 * tension);
+}
+
+TEST(Lumped, BadDefinitionsAreRefusedAndCreateNothing) {
+    World world(settings());
+    auto netRefusal = [&](auto&& edit) {
+        NetDef def;
+        edit(def);
+        return refusal([&] { createNet(world, def); });
+    };
+    EXPECT_TRUE(contains(netRefusal([](NetDef& d) { d.rows = 1; }), "at least 2 x 2"));
+    EXPECT_TRUE(contains(netRefusal([](NetDef& d) { d.columns = 0; }), "at least 2 x 2"));
+    EXPECT_TRUE(contains(netRefusal([](NetDef& d) { d.meshSize = 0; }), "NetDef.meshSize"));
+    EXPECT_TRUE(contains(netRefusal([](NetDef& d) { d.node.mass = -1; }), "NetDef.node.mass"));
+    EXPECT_TRUE(contains(netRefusal([](NetDef& d) { d.node.radius = NAN; }), "NetDef.node.radius"));
+    EXPECT_TRUE(contains(netRefusal([](NetDef& d) { d.thread.axialRigidity = -5; }),
+                         "NetDef.thread.axialRigidity"));
+    EXPECT_TRUE(
+        contains(netRefusal([](NetDef& d) { d.thread.damping = -1; }), "NetDef.thread.damping"));
+    EXPECT_TRUE(contains(netRefusal([](NetDef& d) { d.cornerMass = -1; }), "NetDef.cornerMass"));
+    EXPECT_TRUE(contains(netRefusal([](NetDef& d) { d.node.material.restitution = 2; }),
+                         "NetDef.node.material.restitution"));
+    EXPECT_TRUE(contains(netRefusal([](NetDef& d) { d.orientation = Quat(2, 0, 0, 0); }),
+                         "NetDef.orientation"));
+
+    auto stringRefusal = [&](auto&& edit) {
+        StringDef def;
+        edit(def);
+        return refusal([&] { createString(world, def); });
+    };
+    EXPECT_TRUE(contains(stringRefusal([](StringDef& d) { d.count = 0; }), "StringDef.count"));
+    EXPECT_TRUE(contains(stringRefusal([](StringDef& d) {
+                             d.count = 1;
+                             d.fixedStart = false;
+                         }),
+                         "StringDef.count"));
+    EXPECT_TRUE(contains(stringRefusal([](StringDef& d) { d.restLengthRatio = 0; }),
+                         "StringDef.restLengthRatio"));
+    EXPECT_TRUE(
+        contains(stringRefusal([](StringDef& d) { d.end = d.start; }), "StringDef.start and end"));
+    EXPECT_TRUE(contains(stringRefusal([](StringDef& d) { d.thread.axialRigidity = 0; }),
+                         "StringDef.thread.axialRigidity"));
+    EXPECT_EQ(world.bodyCount(), 0);
+    EXPECT_EQ(world.springCount(), 0);
+}
+
+}  // namespace
+}  // namespace tumble
