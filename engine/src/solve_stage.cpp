@@ -19,6 +19,8 @@ Real mixRestitution(Real a, Real b) {
 namespace {
 
 constexpr Real kProjectionCompliance = 0.01;
+// Relative stretch below which post-stabilisation leaves a spring alone.
+constexpr Real kNegligibleStretch = 1e-12;
 
 // What this step's forces did to the velocity of a body point (m/s): the solver turns it into
 // the time and speed of an impact within the step.
@@ -188,8 +190,10 @@ void SolveStage::projectSprings(BodyStore& bodies, const SpringStore& springs,
         // A taut element: what the step's linearisation believed its length to be, against
         // the true one. A slack thread: whatever stretched it past its rest length without a
         // pull (contacts pushing its ends apart).
-        const Real error = taut ? row.length - solved.direction.dot(row.length * row.direction)
-                                : std::max<Real>(0, row.length - row.restLength);
+        Real error = taut ? row.length - solved.direction.dot(row.length * row.direction)
+                          : std::max<Real>(0, row.length - row.restLength);
+        if (error <= kNegligibleStretch * row.restLength)
+            error = 0;  // rounding: not worth a factorisation
         row.bias = error * context.inverseH;
         worst = std::max(worst, error);
         // Compliance of 1 % of the row's own inverse mass: a cell of the net folded flat puts

@@ -14,6 +14,9 @@ namespace {
 // clamping then takes over.
 constexpr int kActiveSetRounds = 6;
 
+// Velocity (m/s) below which a thread's push or pull does not change the active set.
+constexpr Real kFlipSpeed = 1e-9;
+
 bool usable(const SpringRow& row) {
     return row.mass > 0 && row.bodyA != row.bodyB;
 }
@@ -308,7 +311,10 @@ Real SpringBlockSolver::solve(std::span<SolverBody> bodies, std::span<SpringRow>
                 continue;
             const SolverBody& a = bodies[row.bodyA];
             const SolverBody& b = bodies[row.bodyB];
-            wanted_[i] = active_[i] ? row.impulse <= 0 : springRowSpeed(a, b, row) + row.bias > 0;
+            // Pushes and pulls below kFlipSpeed are rounding (a net falling flat has threads at
+            // exactly their rest length): flipping on them cost a refactorisation per round.
+            wanted_[i] = active_[i] ? row.impulse / row.mass <= kFlipSpeed
+                                    : springRowSpeed(a, b, row) + row.bias > kFlipSpeed;
             changed = changed || wanted_[i] != active_[i];
         }
         if (!changed)
