@@ -9,11 +9,11 @@
 //    under tension: its highest (axial) mode has omega_max = 2 omega_e sin(N pi / (2 (N + 1))),
 //    just below 2 omega_e, so the boundary is h = 1 / (omega_e sin(...)) ~ 1 / omega_e. Found by
 //    bisection on omega_e h with every mode excited.
-// 3. Below the boundary (omega_e h = 0.5 claimed; 0.9 reported) the string's total energy (kinetic
-// + elastic)
-//    shows no secular drift over 1000 periods of its fundamental: the least-squares slope of E(t)
-//    times the duration, relative to the mean energy. (Semi-implicit Euler's energy oscillates
-//    step to step; it is its mean that must not move.)
+// 3. Below the boundary the string's energy shows no secular drift over 1000 periods of its
+//    fundamental: the least-squares slope of E(t) times the duration, relative to the mean energy
+//    (semi-implicit Euler's energy oscillates step to step; it is its mean that must not move).
+//    Claimed for E (kinetic + elastic) at omega_e h = 0.5, and for the modified energy the
+//    scheme conserves, E + (h / 2) v . F, at 0.5 and 0.9; see run().
 // 4. The same string with implicit springs at omega_e h = 100 stays bounded (largest excursion
 //    over the last quarter at most twice that over the first). Its energy is reported, not
 //    claimed: exact implicit Euler would only dissipate, but the solver's fixed PGS budget does
@@ -80,6 +80,7 @@ struct StringRun {
     bool finite = true;
     double growth = 0;
     double drift = 0;           // slope of E(t) * duration / mean E
+    double shadowDrift = 0;     // the same for the modified energy (see runString)
     double maxEnergyRatio = 0;  // max E / E(0)
 };
 
@@ -99,6 +100,7 @@ StringRun runString(int n, double omegaEH, SpringFormulation formulation, int st
                           1e-3 * std::cos(2.1 * j));
         masses.push_back(addPointMass(world, Vec3(spacing * j, 0, 0) + offset, m));
     }
+    std::vector<SpringId> springs;
     SpringDef def;
     def.restLength = 0.99 * spacing;
     def.stiffness = k;
@@ -117,14 +119,34 @@ StringRun runString(int n, double omegaEH, SpringFormulation formulation, int st
             def.bodyB = masses[j];
             def.localAnchorB = Vec3::Zero();
         }
-        world.createSpring(def);
+        springs.push_back(world.createSpring(def));
     }
     auto totalEnergy = [&] { return world.kineticEnergy() + world.springPotentialEnergy(); };
+    // Semi-implicit Euler conserves a modified energy, not E: for x' = v, M v' = F(x) it is
+    // E + (h / 2) v . F(x) to O(h^2) (exactly, for a linear system: v^2 + w^2 x^2 - h w^2 x v is
+    // invariant for the oscillator). Near the stability limit the two differ by a factor
+    // 1 - (omega h / 2)^2 per mode, so energy moving into the high modes shows in E as a loss.
+    auto shadowEnergy = [&] {
+        double work = 0;  // v . F over the masses
+        for (const SpringId id : springs) {
+            const SpringDef& s = world.springDef(id);
+            const Vec3 pA = world.position(s.bodyA);
+            const Vec3 pB = s.bodyB.isNull() ? s.localAnchorB : world.position(s.bodyB);
+            const Vec3 d = pB - pA;
+            const double length = d.norm();
+            const Vec3 force = s.stiffness * (length - s.restLength) * d / length;  // on A
+            work += force.dot(world.linearVelocity(s.bodyA));
+            if (!s.bodyB.isNull())
+                work -= force.dot(world.linearVelocity(s.bodyB));
+        }
+        return totalEnergy() + 0.5 * h * work;
+    };
     StringRun run;
     const double e0 = totalEnergy();
     std::vector<double> excursion;
     excursion.reserve(steps);
     double st = 0, se = 0, stt = 0, ste = 0;
+    double sm = 0, stm = 0;  // the modified energy's sums
     for (int i = 0; i < steps; ++i) {
         if (!world.step().ok()) {
             run.finite = false;
@@ -148,6 +170,9 @@ StringRun runString(int n, double omegaEH, SpringFormulation formulation, int st
             se += e;
             stt += t * t;
             ste += t * e;
+            const double modified = shadowEnergy();
+            sm += modified;
+            stm += t * modified;
             run.maxEnergyRatio = std::max(run.maxEnergyRatio, e / e0);
         }
     }
@@ -156,6 +181,8 @@ StringRun runString(int n, double omegaEH, SpringFormulation formulation, int st
         const double count = steps;
         const double slope = (count * ste - st * se) / (count * stt - st * st);
         run.drift = slope * (h * steps) / (se / count);
+        const double shadowSlope = (count * stm - st * sm) / (count * stt - st * st);
+        run.shadowDrift = shadowSlope * (h * steps) / (sm / count);
     }
     return run;
 }
@@ -201,6 +228,7 @@ CaseResult run(const CaseOptions& options) {
     const double periods = options.fast ? 100 : 1000;
     const double omega1 = 2 * 100 * std::sin(kPi / (2.0 * (n + 1)));
     double worstDrift = 0;
+    double worstShadowDrift = 0;
     for (const double omegaEH : {0.5, 0.9}) {
         const double h = omegaEH / 100;
         const int steps = static_cast<int>(periods * 2 * kPi / omega1 / h);
@@ -209,12 +237,19 @@ CaseResult run(const CaseOptions& options) {
                                  {"periods", periods},
                                  {"steps", steps},
                                  {"energy_drift", r.drift},
+                                 {"modified_energy_drift", r.shadowDrift},
                                  {"max_energy_ratio", r.maxEnergyRatio}}});
-        // Claimed at 0.5; 0.9 is reported only: with N = 32 it lost half its energy over 1000
-        // periods (nonlinear transfer into modes near the limit), which is an open finding.
+        // E itself is claimed at 0.5. At 0.9 (N = 32) E falls by half over 1000 periods while
+        // the modified energy the scheme conserves does not move: the nonlinear string passes
+        // energy into its highest modes, where E is a fraction 1 - (omega h / 2)^2 of it.
         if (omegaEH == 0.5)
             worstDrift = std::max(worstDrift, r.finite ? std::abs(r.drift) : INFINITY);
+        worstShadowDrift =
+            std::max(worstShadowDrift, r.finite ? std::abs(r.shadowDrift) : INFINITY);
     }
+    result.metric("explicit_modified_energy_drift_max", worstShadowDrift);
+    result.check(worstShadowDrift < 1e-3,
+                 "explicit string's modified energy drifts by 0.1 % or more below the boundary");
     result.metric("explicit_energy_drift_max", worstDrift);
     result.tolerance("energy_drift_max", 1e-3);
     result.check(worstDrift < 1e-3, "explicit string energy drifts by 0.1 % or more");
