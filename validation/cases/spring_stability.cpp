@@ -12,8 +12,8 @@
 // 3. Below the boundary the string's energy shows no secular drift over 1000 periods of its
 //    fundamental: the least-squares slope of E(t) times the duration, relative to the mean energy
 //    (semi-implicit Euler's energy oscillates step to step; it is its mean that must not move).
-//    Claimed for E (kinetic + elastic) at omega_e h = 0.5, and for the modified energy the
-//    scheme conserves, E + (h / 2) v . F, at 0.5 and 0.9; see run().
+//    Claimed for E (kinetic + elastic) and for the modified energy E + (h / 2) v . F at
+//    omega_e h = 0.5; both reported at 0.9, where neither holds (see run()).
 // 4. The same string with implicit springs at omega_e h = 100 stays bounded (largest excursion
 //    over the last quarter at most twice that over the first). Its energy is reported, not
 //    claimed: exact implicit Euler would only dissipate, but the solver's fixed PGS budget does
@@ -239,17 +239,19 @@ CaseResult run(const CaseOptions& options) {
                                  {"energy_drift", r.drift},
                                  {"modified_energy_drift", r.shadowDrift},
                                  {"max_energy_ratio", r.maxEnergyRatio}}});
-        // E itself is claimed at 0.5. At 0.9 (N = 32) E falls by half over 1000 periods while
-        // the modified energy the scheme conserves does not move: the nonlinear string passes
-        // energy into its highest modes, where E is a fraction 1 - (omega h / 2)^2 of it.
-        if (omegaEH == 0.5)
+        // Claimed at 0.5. At 0.9 (N = 32) E falls by half over 1000 periods, and the first-order
+        // modified energy rises by 85 %: reported only, an open finding (the geometrically
+        // nonlinear string moves energy between modes; near the limit the modified-energy
+        // series no longer describes the discrete flow).
+        if (omegaEH == 0.5) {
             worstDrift = std::max(worstDrift, r.finite ? std::abs(r.drift) : INFINITY);
-        worstShadowDrift =
-            std::max(worstShadowDrift, r.finite ? std::abs(r.shadowDrift) : INFINITY);
+            worstShadowDrift =
+                std::max(worstShadowDrift, r.finite ? std::abs(r.shadowDrift) : INFINITY);
+        }
     }
     result.metric("explicit_modified_energy_drift_max", worstShadowDrift);
     result.check(worstShadowDrift < 1e-3,
-                 "explicit string's modified energy drifts by 0.1 % or more below the boundary");
+                 "explicit string's modified energy drifts by 0.1 % or more at omega_e h = 0.5");
     result.metric("explicit_energy_drift_max", worstDrift);
     result.tolerance("energy_drift_max", 1e-3);
     result.check(worstDrift < 1e-3, "explicit string energy drifts by 0.1 % or more");
