@@ -1,0 +1,170 @@
+// tumble-soak: a long run for reliability, not a test (issue 9's soak; minutes of wall time).
+//
+// `rain` at scale: N mixed bodies (spheres, boxes, capsules, cylinders) rain into a walled
+// container in waves, then a capture net (implicit tension-only threads, colliding nodes) falls
+// on the pile; the run goes on for the given simulated time. Every step is checked for a failed
+// (non-finite) step; every simulated second the solver residual, the deepest penetration and the
+// process's resident memory are sampled. Memory must not grow after the warm-up (the first
+// quarter: bodies are still being created then). Prints a summary and exits 1 on any failure.
+//
+//     tumble-soak [--bodies 5000] [--minutes 10] [--net 20]
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "tumble/lumped.h"
+#include "tumble/tumble.h"
+
+namespace {
+
+using namespace tumble;
+
+// Resident set size (bytes) from /proc; 0 where there is none.
+double residentBytes() {
+    std::ifstream statm("/proc/self/statm");
+    double pages = 0;
+    double resident = 0;
+    if (!(statm >> pages >> resident))
+        return 0;
+    return resident * 4096.0;
+}
+
+Shape shapeFor(int k) {
+    switch (k % 4) {
+        case 0:
+            return Sphere{0.15};
+        case 1:
+            return Box{Vec3(0.15, 0.12, 0.1)};
+        case 2:
+            return Capsule{0.1, 0.1};
+        default:
+            return Cylinder{0.14, 0.1};
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{
+        "Tumble soak: a long rain + net run checked for non-finite state, memory growth "
+        "and solver blow-up"};
+    int bodies = 5000;
+    double minutes = 10;
+    int netSize = 20;
+    app.add_option("--bodies", bodies, "bodies raining into the container")
+        ->check(CLI::Range(1, 100000));
+    app.add_option("--minutes", minutes, "simulated time (min)")->check(CLI::PositiveNumber);
+    app.add_option("--net", netSize, "net nodes per side (0: no net)")->check(CLI::Range(0, 200));
+    CLI11_PARSE(app, argc, argv);
+
+    const Real h = 1.0 / 60.0;
+    World world(WorldDef{.timeStep = h});
+    // Container: 0.01 m^2 of floor per body, so the pile is a few bodies deep.
+    const Real half = std::max<Real>(2, 0.5 * std::sqrt(0.01 * bodies) * 2 / 2);
+    BodyDef fixed{.type = BodyType::Static};
+    const BodyId container = world.createBody(fixed);
+    world.createShape(container, ShapeDef{.geometry = HalfSpace{}});
+    for (int side = 0; side < 4; ++side) {
+        const Real sign = side % 2 == 0 ? 1 : -1;
+        const bool alongX = side < 2;
+        ShapeDef wall;
+        wall.geometry = Box{alongX ? Vec3(0.1, half, 3) : Vec3(half, 0.1, 3)};
+        wall.localPose.position =
+            alongX ? Vec3(sign * (half + 0.1), 0, 3) : Vec3(0, sign * (half + 0.1), 3);
+        world.createShape(container, wall);
+    }
+
+    // Waves of one layer at a time, 0.4 m apart, every half second until all have fallen in.
+    const int perSide = std::max(1, static_cast<int>((2 * half - 0.4) / 0.4));
+    const int perWave = perSide * perSide;
+    const long steps = static_cast<long>(minutes * 60 / h);
+    const long stepsPerSecond = static_cast<long>(1 / h);
+    int created = 0;
+    bool netDropped = netSize == 0;
+    double warmMemory = 0;
+    double peakMemoryAfterWarmUp = 0;
+    double worstResidual = 0;
+    double worstPenetration = 0;
+    double lateResidual = 0;
+    std::printf("%8s %8s %10s %12s %12s %10s\n", "time_s", "bodies", "awake", "residual",
+                "penetration", "rss_MB");
+    const auto start = std::chrono::steady_clock::now();
+    for (long i = 0; i < steps; ++i) {
+        if (i % (stepsPerSecond / 2) == 0 && created < bodies) {
+            for (int k = 0; k < perWave && created < bodies; ++k, ++created) {
+                BodyDef def;
+                def.position =
+                    Vec3(-half + 0.4 + 0.4 * (k % perSide), -half + 0.4 + 0.4 * (k / perSide), 7);
+                def.orientation =
+                    Quat(Eigen::AngleAxis<Real>(0.6 * created, Vec3(1, 2, 3).normalized()));
+                def.linearVelocity = Vec3(0, 0, -2);
+                world.createShape(world.createBody(def),
+                                  ShapeDef{.geometry = shapeFor(created),
+                                           .material = Material{.friction = 0.5, .density = 700}});
+            }
+        }
+        if (!netDropped && created == bodies && i % stepsPerSecond == 0) {
+            NetDef net;
+            net.rows = netSize;
+            net.columns = netSize;
+            net.meshSize = std::min<Real>(0.2, 2 * half / netSize);
+            net.center = Vec3(0, 0, 8);
+            net.node.mass = 0.02;
+            net.node.radius = 0.03;
+            net.node.collide = true;
+            net.cornerMass = 0.5;
+            net.thread.axialRigidity = 2000;
+            net.thread.damping = 0.5;
+            createNet(world, net);
+            netDropped = true;
+        }
+        const StepStatus status = world.step();
+        if (!status.ok()) {
+            std::printf("FAIL: step %ld (t = %.3f s) went non-finite (body %u)\n", i,
+                        static_cast<double>(i) * h, status.body.index);
+            return 1;
+        }
+        const SolverStats& stats = world.solverStats();
+        worstResidual = std::max(worstResidual, stats.maxResidual);
+        worstPenetration = std::max(worstPenetration, stats.deepestPenetration);
+        if (i >= 3 * steps / 4)
+            lateResidual = std::max(lateResidual, stats.maxResidual);
+        if ((i + 1) % stepsPerSecond == 0) {
+            const double rss = residentBytes();
+            if (i + 1 >= steps / 4 && warmMemory == 0)
+                warmMemory = rss;
+            if (i + 1 > steps / 4)
+                peakMemoryAfterWarmUp = std::max(peakMemoryAfterWarmUp, rss);
+            if ((i + 1) % (10 * stepsPerSecond) == 0) {
+                std::printf("%8.0f %8d %10d %12.3g %12.3g %10.1f\n", static_cast<double>(i + 1) * h,
+                            world.bodyCount(), world.awakeBodyCount(), stats.maxResidual,
+                            stats.deepestPenetration, rss / 1e6);
+                std::fflush(stdout);
+            }
+        }
+    }
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double growth = warmMemory > 0 ? peakMemoryAfterWarmUp / warmMemory - 1 : 0;
+    std::printf("\nsimulated %.0f s in %.0f s wall (real-time factor %.2f), %d bodies\n",
+                static_cast<double>(steps) * h, wall, static_cast<double>(steps) * h / wall,
+                world.bodyCount());
+    std::printf("non-finite steps: 0\nlargest residual %.3g m/s (last quarter %.3g)\n",
+                worstResidual, lateResidual);
+    std::printf(
+        "deepest penetration %.3g m\nresident memory after warm-up %.1f MB, peak %.1f MB "
+        "(growth %.2f %%)\n",
+        worstPenetration, warmMemory / 1e6, peakMemoryAfterWarmUp / 1e6, 100 * growth);
+    // Growth beyond 1 % after every body exists would be a leak or an unbounded cache.
+    if (growth > 0.01) {
+        std::printf("FAIL: memory grew after warm-up\n");
+        return 1;
+    }
+    return 0;
+}
