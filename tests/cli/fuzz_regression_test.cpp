@@ -74,5 +74,36 @@ TEST(FuzzRegression, OverrideWithAHugeArrayIndexIsRefused) {
     EXPECT_EQ(document["bodies"][0]["name"], "b");
 }
 
+// A mistyped count used to make every body before anything was checked: 1e8 boxes ran the
+// process out of memory instead of giving a message.
+TEST(FuzzRegression, GeneratorsPastAMillionBodiesAreRefusedBeforeMakingThem) {
+    for (const char* generator :
+         {R"({"type": "stack", "count": 100000000})", R"({"type": "pyramid", "base": 1000000000})",
+          R"({"type": "wall", "rows": 100000, "columns": 100000})",
+          R"({"type": "grid", "count": [1000, 1000, 2], "shapes": [{"type": "sphere"}]})"}) {
+        const Json document =
+            Json::parse(std::string(R"({"bodies": [], "generators": [)") + generator + "]}");
+        try {
+            parseScene(document, "big");
+            ADD_FAILURE() << "accepted " << generator;
+        } catch (const InvalidArgument& e) {
+            EXPECT_NE(std::string(e.what()).find("generators[0]: would make "), std::string::npos)
+                << e.what();
+            EXPECT_NE(std::string(e.what()).find("past its limit of 1000000"), std::string::npos)
+                << e.what();
+        }
+    }
+    // The limit counts the listed bodies too (making a million bodies to show the limit itself
+    // is allowed takes 0.5 GB and seconds).
+    const Json oneTooMany = Json::parse(R"({"bodies": [{"shapes": [{"type": "sphere"}]}],
+        "generators": [{"type": "grid", "count": [1000, 1000, 1], "shapes": [{"type": "sphere"}]}]})");
+    EXPECT_THROW(parseScene(oneTooMany, "big"), InvalidArgument);
+    EXPECT_EQ(parseScene(Json::parse(R"({"generators": [{"type": "grid", "count": [100, 100, 2],
+        "shapes": [{"type": "sphere"}]}]})"),
+                         "fine")
+                  .bodies.size(),
+              20'000u);
+}
+
 }  // namespace
 }  // namespace tumble::cli
