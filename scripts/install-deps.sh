@@ -12,6 +12,7 @@ packages=(
   libcli11-dev                           # command lines
   libgtest-dev libgmock-dev              # unit tests
   libbenchmark-dev                       # micro-benchmarks
+  clang                                  # libFuzzer for scripts/fuzz.sh
   libbullet-dev libode-dev libbox2d-dev  # peer engines for tumble-bench (optional at configure)
 )
 

@@ -31,6 +31,15 @@ Vec3 rowAxis(JsonObject& o) {
     return o.choice("axis", "x", {"x", "y"}) == "y" ? Vec3::UnitY() : Vec3::UnitX();
 }
 
+/// Refuses a generator that would take the scene past kMaxSceneBodies, before any is made: a
+/// mistyped count (1e8 boxes) must be an error message, not the machine running out of memory.
+void checkRoom(const std::vector<BodySpec>& bodies, double more, const std::string& path) {
+    if (static_cast<double>(bodies.size()) + more > kMaxSceneBodies)
+        failAt(path, "would make ", static_cast<long long>(more),
+               " bodies, taking the scene past its limit of ",
+               static_cast<long long>(kMaxSceneBodies));
+}
+
 /// A 3-D grid of bodies, each carrying the next shape of "shapes" in turn, for piles of mixed
 /// shapes ("rain"). With "rotate", body k is turned by k * 37 degrees about a fixed oblique axis
 /// so that the shapes do not all land square.
@@ -53,6 +62,7 @@ void parseGrid(JsonObject& o, const std::string& path, const std::string& name,
     for (std::size_t i = 0; i < shapes->size(); ++i)
         defs.push_back(parseShape((*shapes)[i], o.pathOf("shapes") + "[" + std::to_string(i) + "]",
                                   materials));
+    checkRoom(bodies, countReal.prod(), path);
     const int nx = static_cast<int>(countReal.x()), ny = static_cast<int>(countReal.y()),
               nz = static_cast<int>(countReal.z());
     int k = 0;
@@ -136,11 +146,13 @@ void parseGenerator(const Json& value, const std::string& path, const Materials&
     if (type == "stack") {
         // A column, bottom first; `gap` (m) of air between blocks drops them onto each other.
         const int count = o.integer("count", 5, 1);
+        checkRoom(bodies, count, path);
         for (int i = 0; i < count; ++i)
             add(base + Vec3(0, 0, h.z() + i * (2 * h.z() + gap)));
     } else if (type == "pyramid") {
         // Row j holds base - j boxes, centred; `gap` (m) between neighbours of a row.
         const int count = o.integer("base", 5, 1);
+        checkRoom(bodies, 0.5 * count * (count + 1.0), path);
         const Vec3 axis = rowAxis(o);
         const Real pitch = 2 * h.dot(axis) + gap;
         for (int row = 0; row < count; ++row) {
@@ -153,6 +165,7 @@ void parseGenerator(const Json& value, const std::string& path, const Materials&
         // Rows of bricks; a "running" bond shifts every other row by half a brick, as masons do.
         const int rows = o.integer("rows", 5, 1);
         const int columns = o.integer("columns", 8, 1);
+        checkRoom(bodies, static_cast<double>(rows) * columns, path);
         const Vec3 axis = rowAxis(o);
         const bool running = o.choice("bond", "running", {"running", "stack"}) == "running";
         const Real pitch = 2 * h.dot(axis) + gap;

@@ -236,6 +236,14 @@ Json readJsonFile(const std::string& path) {
             what = what.substr(colon == std::string::npos ? at : colon + 2);
         }
         fail(path, ":", line, ":", column, ": JSON syntax error: ", what);
+    } catch (const Json::exception& e) {
+        // A number beyond a double's range ("1e400") is no syntax error to nlohmann but an
+        // out_of_range (406) without a position; its message quotes the number. Found by
+        // fuzz/scene_loader_fuzz: it used to escape as a foreign exception and end the process.
+        std::string what = e.what();
+        if (const std::size_t at = what.find("] "); at != std::string::npos)
+            what = what.substr(at + 2);
+        fail(path, ": JSON value out of range: ", what);
     }
 }
 
@@ -256,9 +264,12 @@ void applyOverride(Json& document, const std::string& assignment) {
         parts.push_back(segment);
     for (std::size_t i = 0; i < parts.size(); ++i) {
         const std::string& part = parts[i];
-        const bool numeric = !part.empty() && std::all_of(part.begin(), part.end(), ::isdigit);
+        const bool numeric = !part.empty() && std::all_of(part.begin(), part.end(), [](char c) {
+            return c >= '0' && c <= '9';  // not ::isdigit: a negative char is undefined there
+        });
         if (at->is_array()) {
-            if (!numeric || std::stoul(part) >= at->size())
+            // At most 18 digits: std::stoul would throw std::out_of_range beyond unsigned long.
+            if (!numeric || part.size() > 18 || std::stoul(part) >= at->size())
                 fail("--set ", key, ": \"", part, "\" is not an index of an array of ", at->size());
             at = &(*at)[std::stoul(part)];
         } else {

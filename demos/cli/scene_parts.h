@@ -12,6 +12,10 @@ namespace tumble::cli {
 
 using Materials = std::map<std::string, Material>;
 
+/// Most bodies a scene file may make (bodies plus generators): far above any scene the engine
+/// steps at a useful rate, far below what exhausts memory (~0.5 kB per body while loading).
+inline constexpr double kMaxSceneBodies = 1'000'000;
+
 /// {"friction", "restitution", "density"}, checked: friction >= 0, restitution in [0, 1],
 /// density > 0. Missing keys take `base`'s values.
 Material parseMaterial(const Json& value, const std::string& path, const Material& base = {});
