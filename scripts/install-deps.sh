@@ -13,6 +13,7 @@ packages=(
   libgtest-dev libgmock-dev              # unit tests
   libbenchmark-dev                       # micro-benchmarks
   libbullet-dev libode-dev libbox2d-dev  # peer engines for tumble-bench (optional at configure)
+  python3-matplotlib                     # PNG plots of the sweeps and reports (/usr/bin/python3)
 )
 
 missing=()
