@@ -45,7 +45,7 @@ def fig4(rows, png):
 
 
 def fig5(rows, png):
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4.4), sharey=True)
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4.4))  # own scales: 1e-4 beside 0.3
     for ax, baumgarte, title in ((axes[0], 0, "split impulse (Tumble's default)"),
                                  (axes[1], 1, "Baumgarte k_erp = 0.2 + restitution")):
         sel = sorted((r for r in rows if r["baumgarte"] == baumgarte), key=lambda r: r["h"])
@@ -56,7 +56,8 @@ def fig5(rows, png):
         ax.set_xlabel("h (s)")
         ax.set_title(title)
         ax.grid(True, which="both", alpha=0.3)
-    axes[0].set_ylabel("apex height / analytic - 1")
+    for ax in axes:
+        ax.set_ylabel("apex height / analytic - 1")
     axes[0].legend(fontsize=8)
     fig.suptitle("Fig. 5: bounce heights against h (sphere, e = 0.8, from 1 m)")
     fig.tight_layout()

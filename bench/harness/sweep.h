@@ -10,7 +10,7 @@ namespace tumble::bench {
 
 struct SweepOptions {
     std::string outDir;               ///< where sweep.csv, pareto.md and pareto.png go (created)
-    double duration = 3;              ///< simulated seconds per run, > 0
+    double duration = 2;              ///< simulated seconds per run, > 0
     int stackSize = 10;               ///< cubes in the column, >= 1
     int pyramidBase = 6;              ///< cubes in the pyramid's bottom row, >= 1
     std::vector<std::string> scenes;  ///< only these (stack, pyramid, chain); empty: all
