@@ -2,6 +2,7 @@
 // time, with matched settings, side by side: wall time per simulated second (median of several
 // runs, with the spread), real-time factor, and each scene's error metric (top drift, deepest
 // penetration, whether it collapsed). Prints a Markdown table; --json writes the same figures.
+// --sweep DIR instead sweeps h and iterations for the speed-versus-error fronts (sweep.h).
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
