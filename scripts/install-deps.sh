@@ -14,6 +14,7 @@ packages=(
   libbenchmark-dev                       # micro-benchmarks
   clang                                  # libFuzzer for scripts/fuzz.sh
   libbullet-dev libode-dev libbox2d-dev  # peer engines for tumble-bench (optional at configure)
+  python3-matplotlib                     # PNG plots of the sweeps and reports (/usr/bin/python3)
 )
 
 missing=()

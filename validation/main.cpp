@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "case.h"
+#include "report.h"
 
 namespace {
 
@@ -62,6 +63,10 @@ int main(int argc, char** argv) {
     app.add_flag("--json", json, "Print the results as JSON");
     app.add_flag("--fast", fast, "Shorter sweeps (as run under ctest)");
     app.add_flag("--list", list, "List the cases and exit");
+    std::string reportDir;
+    app.add_option("--report", reportDir,
+                   "Also write report.md, each table as CSV and the study's figures as PNG to "
+                   "this directory (default cases: oscillator bounce)");
     CLI11_PARSE(app, argc, argv);
 
     const std::vector<ValidationCase> cases = tumble::validation::allCases();
@@ -70,6 +75,8 @@ int main(int argc, char** argv) {
             std::printf("%-14s %s\n", c.name.c_str(), c.claim.c_str());
         return 0;
     }
+    if (names.empty() && !reportDir.empty())
+        names = {"oscillator", "bounce"};  // the study's Fig. 4 and Fig. 5
     std::vector<const ValidationCase*> selected;
     for (const auto& name : names) {
         const ValidationCase* found = nullptr;
@@ -88,6 +95,7 @@ int main(int argc, char** argv) {
             selected.push_back(&c);
     }
 
+    std::vector<std::pair<const ValidationCase*, CaseResult>> reported;
     Json report = {{"cases", Json::array()}};
     int passed = 0;
     int failed = 0;
@@ -111,6 +119,8 @@ int main(int argc, char** argv) {
         } else {
             printText(*c, result);
         }
+        if (!reportDir.empty())
+            reported.emplace_back(c, result);
     }
     if (json) {
         report["passed"] = passed;
@@ -118,6 +128,10 @@ int main(int argc, char** argv) {
         std::cout << report.dump(2) << '\n';
     } else {
         std::printf("\n%d passed, %d failed\n", passed, failed);
+    }
+    if (!reportDir.empty() && !tumble::validation::writeReport(reportDir, reported)) {
+        std::cerr << "tumble-validate: cannot write the report to '" << reportDir << "'\n";
+        return 2;
     }
     return failed == 0 ? 0 : 1;
 }

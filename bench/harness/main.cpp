@@ -2,6 +2,7 @@
 // time, with matched settings, side by side: wall time per simulated second (median of several
 // runs, with the spread), real-time factor, and each scene's error metric (top drift, deepest
 // penetration, whether it collapsed). Prints a Markdown table; --json writes the same figures.
+// --sweep DIR instead sweeps h and iterations for the speed-versus-error fronts (sweep.h).
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -14,17 +15,13 @@
 #include <vector>
 
 #include "peer.h"
+#include "scene.h"
+#include "sweep.h"
 
 namespace {
 
 using namespace tumble;
 using namespace tumble::bench;
-
-struct Scene {
-    std::string name;
-    int size;  // cubes in the column, or the pyramid's base
-    bool pyramid;
-};
 
 struct Outcome {
     std::vector<double> wallPerSimulatedSecond;  // one per run (s/s)
@@ -32,26 +29,6 @@ struct Outcome {
     double deepest = 0;                          // deepest penetration over the run (m)
     double collapsedAt = -1;                     // when any cube first moved 0.5 m (s), or -1
 };
-
-// Builds the scene, returns the cubes' start positions (the top cube last).
-std::vector<Vec3> build(PeerWorld& world, const Scene& scene) {
-    world.addGround();
-    std::vector<Vec3> start;
-    if (!scene.pyramid) {
-        for (int i = 0; i < scene.size; ++i)
-            start.push_back(Vec3(0, 0, 0.5 + i));
-    } else {
-        constexpr double kPitch = 1.05;  // 5 cm between neighbours, as in the `pyramid` case
-        for (int row = 0; row < scene.size; ++row) {
-            const int n = scene.size - row;
-            for (int i = 0; i < n; ++i)
-                start.push_back(Vec3((i - 0.5 * (n - 1)) * kPitch, 0, 0.5 + row));
-        }
-    }
-    for (const Vec3& p : start)
-        world.addCube(p);
-    return start;
-}
 
 Outcome run(const Peer& peer, const Scene& scene, const SceneSettings& settings, double duration,
             int runs) {
@@ -104,7 +81,22 @@ int main(int argc, char** argv) {
     app.add_option("--time", duration, "simulated seconds per run")->check(CLI::PositiveNumber);
     app.add_option("--json", jsonPath, "also write the figures as JSON to this file");
     app.add_option("--scene", only, "run only these scenes (e.g. stack-20 pyramid-20)");
+    SweepOptions sweep;
+    app.add_option("--sweep", sweep.outDir,
+                   "speed versus error instead: sweep h and iterations, write the Pareto fronts "
+                   "(sweep.csv, pareto.md, pareto.png) to this directory");
+    app.add_option("--sweep-time", sweep.duration, "simulated seconds per sweep run")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--sweep-stack", sweep.stackSize, "cubes in the sweep's column")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--sweep-pyramid", sweep.pyramidBase, "base of the sweep's pyramid")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--sweep-scene", sweep.scenes, "sweep only these: stack, pyramid, chain")
+        ->check(CLI::IsMember({"stack", "pyramid", "chain"}));
+    app.add_flag("!--no-plot", sweep.plot, "do not run the plotting script after the sweep");
     CLI11_PARSE(app, argc, argv);
+    if (!sweep.outDir.empty())
+        return runSweep(sweep);
 
     const std::vector<Scene> scenes = {{"stack-5", 5, false},    {"stack-10", 10, false},
                                        {"stack-20", 20, false},  {"stack-40", 40, false},

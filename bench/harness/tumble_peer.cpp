@@ -32,6 +32,8 @@ private:
     static WorldDef worldDef(const SceneSettings& s) {
         WorldDef def{.gravity = Vec3(0, 0, -9.81), .timeStep = s.timeStep};
         def.solver.iterations = s.iterations;
+        // As many split-impulse sweeps as velocity sweeps, as Bullet runs its split-impulse pass.
+        def.solver.relaxIterations = s.iterations;
         def.enableSleep = false;  // every engine simulates every body
         return def;
     }
