@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The README's demo command: installs what is missing, builds, and runs the main demos: the
-# T-handle's flips (conservation figures), then the `tumble` command on the pyramid scene, which
-# prints its summary and draws it.
+# T-handle's flips (conservation figures), then the `tumble` command on the net-capture scene (the
+# study's capture net wrapping a dustbin), which prints its summary, records the net's four
+# corners and draws it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -10,5 +11,8 @@ cmake --build --preset release --target tumble-demo tumble-cli -j "$(nproc)"
 echo
 ./build/release/demos/tumble-demo
 echo
-./build/release/demos/tumble run pyramid --picture build/pyramid.svg
-echo "picture: build/pyramid.svg (the pyramid at the start, middle and end, side view)"
+./build/release/demos/tumble run net-capture --picture build/net-capture.svg \
+    --record build/net-corners.csv
+echo "picture: build/net-capture.svg (the net at 0, 0.35, 0.6 and 3 s, side view: it lands on"
+echo "the dustbin's lid and wraps down its sides; lines: the four corners' paths)"
+echo "corner trajectories: build/net-corners.csv"

@@ -53,7 +53,7 @@ int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ost
     double time = 0, dt = 0, recordRate = -1;
     int iterations = 0;
     std::vector<std::string> sets;
-    std::vector<int> trace;
+    std::vector<std::string> trace, recordBodies;
     RunOptions options;
     run->add_option("scene", scene, "A built-in scene name (tumble scenes) or a FILE.json")
         ->required();
@@ -70,10 +70,17 @@ int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ost
     run->add_option("--record-rate", recordRate,
                     "Samples per second (Hz) for --record; "
                     "default: every step");
+    run->add_option("--record-bodies", recordBodies,
+                    "Bodies the CSV holds (default every non-static one): indices, names or "
+                    "NET.corners, comma-separated")
+        ->delimiter(',');
     run->add_option("--summary", options.summary, "Write the summary as JSON to FILE");
-    run->add_option("--picture", options.picture, "Draw start, middle and end to FILE.svg");
+    run->add_option("--picture", options.picture,
+                    "Draw start, middle and end (or outputs.pictureTimes) to FILE.svg");
     run->add_option("--view", options.view, "Picture view: side, top or front (default side)");
-    run->add_option("--trace", trace, "Body indices whose trajectories the picture draws (i,j)")
+    run->add_option("--trace", trace,
+                    "Bodies whose trajectories the picture draws: indices, names or NET.corners, "
+                    "comma-separated")
         ->delimiter(',');
     run->add_flag("--quiet,-q", options.quiet, "Print nothing but errors");
 
@@ -107,9 +114,14 @@ int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ost
             options.summary = defaults.summary;
         if (options.picture.empty())
             options.picture = defaults.picture;
+        options.pictureTimes = defaults.pictureTimes;
         if (run->count("--view") == 0)
             options.view = defaults.view;
-        options.trace = run->count("--trace") != 0 ? trace : defaults.trace;
+        options.trace =
+            run->count("--trace") != 0 ? selectBodies(loaded, trace, "--trace") : defaults.trace;
+        options.recordBodies = run->count("--record-bodies") != 0
+                                   ? selectBodies(loaded, recordBodies, "--record-bodies")
+                                   : defaults.recordBodies;
         options.terminal = terminal;
         if (recordRate < 0 && run->count("--record-rate") != 0)
             fail("--record-rate = ", recordRate, " must be >= 0");

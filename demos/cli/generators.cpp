@@ -1,5 +1,5 @@
-// Generators: many boxes from one line of a scene file (stack, pyramid, wall), and the shared
-// material reader.
+// Generators: many boxes from one line of a scene file (stack, pyramid, wall, grid), and the
+// shared material reader. Strings and nets are in lumped_generators.cpp.
 
 #include <cmath>
 #include <numbers>
@@ -119,17 +119,19 @@ Material materialAt(JsonObject& o, const std::string& key, const Materials& mate
 }
 
 void parseGenerator(const Json& value, const std::string& path, const Materials& materials,
-                    std::vector<BodySpec>& bodies) {
+                    Scene& scene) {
+    std::vector<BodySpec>& bodies = scene.bodies;
     JsonObject o(value, path);
     if (!o.has("type"))
         failAt(o.pathOf("type"), "is required");
-    const std::string type = o.string("type", "");
-    if (type == "string" || type == "net")
-        failAt(o.pathOf("type"), "generator \"", type, "\" is not yet supported");
-    if (type != "stack" && type != "pyramid" && type != "wall" && type != "grid")
-        failAt(o.pathOf("type"), "\"", type,
-               "\" is not one of \"stack\", \"pyramid\", \"wall\", \"grid\"");
+    const std::string type =
+        o.choice("type", "", {"stack", "pyramid", "wall", "grid", "string", "net"});
     const std::string name = o.string("name", type);
+    if (type == "string" || type == "net") {
+        parseLumped(o, type, name, materials, scene);
+        o.finish();
+        return;
+    }
     if (type == "grid") {
         parseGrid(o, path, name, materials, bodies);
         o.finish();

@@ -33,12 +33,16 @@ void writeCsvHeader(std::ostream& csv) {
     csv << "time,body,name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
 }
 
-void writeCsvRows(std::ostream& csv, const Scene& scene, const BuiltScene& built) {
+/// One row per recorded body: `selected`, or every non-static body when it is empty.
+void writeCsvRows(std::ostream& csv, const Scene& scene, const BuiltScene& built,
+                  const std::vector<int>& selected) {
     const World& w = built.world;
     char line[512];
-    for (std::size_t i = 0; i < built.bodies.size(); ++i) {
+    const std::size_t count = selected.empty() ? built.bodies.size() : selected.size();
+    for (std::size_t k = 0; k < count; ++k) {
+        const std::size_t i = selected.empty() ? k : static_cast<std::size_t>(selected[k]);
         const BodyId b = built.bodies[i];
-        if (w.bodyType(b) == BodyType::Static)
+        if (selected.empty() && w.bodyType(b) == BodyType::Static)
             continue;
         const Vec3 p = w.position(b);
         const Quat q = w.orientation(b);
@@ -98,12 +102,12 @@ void printSummary(std::ostream& out, const Summary& s) {
     row("real-time factor", "%.4g", s.realTimeFactor);
     row("bodies", "%d", s.bodies);
     row("asleep at the end", "%d", s.bodiesAsleep);
-    std::snprintf(buf, sizeof buf, "  %-24s%12s %12s %12s\n", "energy (J)", "kinetic", "potential",
-                  "total");
+    std::snprintf(buf, sizeof buf, "  %-24s%12s %12s %12s %12s\n", "energy (J)", "kinetic",
+                  "potential", "elastic", "total");
     out << buf;
     for (const auto& [label, e] : {std::pair{"  start", s.start}, std::pair{"  end", s.end}}) {
-        std::snprintf(buf, sizeof buf, "  %-24s%12.5g %12.5g %12.5g\n", label, e.kinetic,
-                      e.potential, e.total());
+        std::snprintf(buf, sizeof buf, "  %-24s%12.5g %12.5g %12.5g %12.5g\n", label, e.kinetic,
+                      e.potential, e.elastic, e.total());
         out << buf;
     }
     row("deepest penetration (m)", "%.3g", s.deepestPenetration);
@@ -116,6 +120,7 @@ Energy energyOf(const BuiltScene& built) {
     const World& w = built.world;
     Energy e;
     e.kinetic = w.kineticEnergy();
+    e.elastic = w.springPotentialEnergy();
     const Vec3 g = w.settings().gravity;
     for (std::size_t i = 0; i < built.bodies.size(); ++i) {
         const BodyId b = built.bodies[i];
@@ -128,8 +133,10 @@ Energy energyOf(const BuiltScene& built) {
 
 std::string summaryJson(const Summary& s) {
     auto energy = [](const Energy& e) {
-        return nlohmann::ordered_json{
-            {"kinetic", e.kinetic}, {"potential", e.potential}, {"total", e.total()}};
+        return nlohmann::ordered_json{{"kinetic", e.kinetic},
+                                      {"potential", e.potential},
+                                      {"elastic", e.elastic},
+                                      {"total", e.total()}};
     };
     nlohmann::ordered_json j{{"scene", s.scene},
                              {"status", s.status},
@@ -151,9 +158,12 @@ std::string summaryJson(const Summary& s) {
 
 int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, std::ostream& err,
              Summary* result) {
-    for (const int t : options.trace) {
-        if (t < 0 || t >= static_cast<int>(scene.bodies.size()))
-            fail("--trace ", t, ": the scene has bodies 0 to ", scene.bodies.size() - 1);
+    for (const std::vector<int>* list : {&options.trace, &options.recordBodies}) {
+        for (const int t : *list) {
+            if (t < 0 || t >= static_cast<int>(scene.bodies.size()))
+                fail("body ", t, " to trace or record: the scene has bodies 0 to ",
+                     scene.bodies.size() - 1);
+        }
     }
     const View view = parseView(options.view);
     BuiltScene built = buildScene(scene);
@@ -173,11 +183,22 @@ int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, s
                        scene.name + (scene.description.empty() ? "" : ": " + scene.description));
     const bool drawing = pictureFile != nullptr;
     const std::uint64_t traceStride = std::max<std::uint64_t>(1, steps / 1000);
+    // The steps drawn: start, middle and end, or the steps nearest the chosen times.
+    std::vector<std::uint64_t> panelSteps{0, steps / 2, steps};
+    if (!options.pictureTimes.empty()) {
+        panelSteps.clear();
+        for (const Real t : options.pictureTimes)
+            panelSteps.push_back(std::min<std::uint64_t>(
+                steps,
+                static_cast<std::uint64_t>(std::llround(std::max<Real>(t, 0) / s.timeStep))));
+    }
+    std::sort(panelSteps.begin(), panelSteps.end());
+    panelSteps.erase(std::unique(panelSteps.begin(), panelSteps.end()), panelSteps.end());
     auto sample = [&](std::uint64_t step) {
         if (!drawing)
             return;
-        if (step == 0 || step == steps / 2 || step == steps)
-            picture.addPanel(world, built.shapes, world.time());
+        if (std::binary_search(panelSteps.begin(), panelSteps.end(), step))
+            picture.addPanel(world, built.shapes, built.springs, built.joints, world.time());
         if (step % traceStride == 0 || step == steps) {
             for (const int t : options.trace)
                 picture.addTracePoint(t, world.time(), world.centerOfMass(built.bodies[t]));
@@ -185,7 +206,7 @@ int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, s
     };
     if (csv) {
         writeCsvHeader(*csv);
-        writeCsvRows(*csv, scene, built);
+        writeCsvRows(*csv, scene, built, options.recordBodies);
     }
     const Real recordPeriod = options.recordRate > 0 ? 1 / options.recordRate : 0;
     Real nextRecord = recordPeriod;
@@ -207,7 +228,7 @@ int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, s
         const SolverStats& stats = world.solverStats();
         s.deepestPenetration = std::max(s.deepestPenetration, stats.deepestPenetration);
         if (csv && world.time() >= nextRecord - 1e-9 * s.timeStep) {
-            writeCsvRows(*csv, scene, built);
+            writeCsvRows(*csv, scene, built, options.recordBodies);
             nextRecord += recordPeriod;
         }
         sample(i);
@@ -225,7 +246,7 @@ int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, s
             ++s.bodiesAsleep;
     }
     if (s.status != "ok" && drawing)
-        picture.addPanel(world, built.shapes, world.time());
+        picture.addPanel(world, built.shapes, built.springs, built.joints, world.time());
     if (summaryFile)
         *summaryFile << summaryJson(s);
     if (pictureFile)

@@ -12,21 +12,25 @@ namespace tumble::cli {
 
 /// Where the outputs go (the scene's "outputs" merged with the command line).
 struct RunOptions {
-    std::string record;   ///< CSV file ("" = none)
-    Real recordRate = 0;  ///< samples per second (Hz); 0 = every step
-    std::string summary;  ///< JSON file ("" = none)
-    std::string picture;  ///< SVG file ("" = none)
+    std::string record;              ///< CSV file ("" = none)
+    Real recordRate = 0;             ///< samples per second (Hz); 0 = every step
+    std::string summary;             ///< JSON file ("" = none)
+    std::string picture;             ///< SVG file ("" = none)
+    std::vector<Real> pictureTimes;  ///< moments drawn (s); empty: start, middle and end
     std::string view = "side";
-    std::vector<int> trace;  ///< body indices traced in the picture
-    bool quiet = false;      ///< no table, no progress bar
-    bool terminal = false;   ///< stdout is a terminal: a progress bar for long runs
+    std::vector<int> trace;         ///< body indices traced in the picture
+    std::vector<int> recordBodies;  ///< body indices the CSV holds; empty: every non-static one
+    bool quiet = false;             ///< no table, no progress bar
+    bool terminal = false;          ///< stdout is a terminal: a progress bar for long runs
 };
 
-/// Energy of the dynamic bodies (J). Potential is -m g.c with each body's gravity scale.
+/// Energy of the dynamic bodies and springs (J). Potential is -m g.c with each body's gravity
+/// scale; elastic is that of every spring and thread (k (L - L0)^2 / 2, none for a slack thread).
 struct Energy {
     Real kinetic = 0;
     Real potential = 0;
-    Real total() const { return kinetic + potential; }
+    Real elastic = 0;
+    Real total() const { return kinetic + potential + elastic; }
 };
 
 struct Summary {

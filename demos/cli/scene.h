@@ -5,9 +5,11 @@
 
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "json_reader.h"
+#include "tumble/lumped.h"
 #include "tumble/tumble.h"
 
 namespace tumble::cli {
@@ -19,16 +21,53 @@ struct BodySpec {
     BodyDef def;       ///< pose, velocities, damping, type
     std::vector<ShapeDef> shapes;
     std::optional<Real> mass;  ///< (kg) scales the shapes' mass and inertia to this
+    std::optional<Drag> drag;  ///< aerodynamic drag on the centre of mass
+    /// Index in Scene::lumped when a string or net generator makes this body (buildScene creates
+    /// it through tumble/lumped.h; def and shapes are unused), else -1.
+    int lumped = -1;
+};
+
+/// A string or net generator. Its nodes are listed in Scene::bodies (for names, indices and
+/// outputs) from firstBody on, in the engine's order: along the string, or row-major over the net.
+struct LumpedSpec {
+    std::string name;  ///< "net": nodes "net[i][j]", corners selectable as "net.corners"
+    std::string path;  ///< "generators[1]"
+    std::variant<StringDef, NetDef> def;
+    std::size_t firstBody = 0;
+    std::size_t nodeCount = 0;
+    /// Initial velocities that replace the generator's for single nodes (node index, m/s).
+    std::vector<std::pair<int, Vec3>> excite;
+};
+
+/// One spring-damper of "springs". Body indices are scene indices; -1 is the world.
+struct SpringSpec {
+    std::string path;  ///< "springs[2]"
+    int bodyA = -1;
+    int bodyB = -1;                   ///< -1: def.localAnchorB is a world point
+    SpringDef def;                    ///< bodies filled in by buildScene
+    bool restLengthFromPose = false;  ///< L0 = the anchors' distance at creation
+    /// k from E A / L0 (both > 0) instead of def.stiffness.
+    std::optional<std::pair<Real, Real>> youngsModulusAndArea;
+};
+
+/// One joint of "joints"; anchors and axis in the world frame at creation, as in JointDef.
+struct JointSpec {
+    std::string path;  ///< "joints[0]"
+    int bodyA = -1;
+    int bodyB = -1;  ///< -1: the world
+    JointDef def;    ///< bodies filled in by buildScene
 };
 
 /// The scene's default outputs (each overridden by the command line).
 struct OutputSpec {
-    std::string record;   ///< CSV trajectories ("" = none)
-    Real recordRate = 0;  ///< samples per second (Hz); 0 = every step
-    std::string summary;  ///< JSON summary ("" = none)
-    std::string picture;  ///< SVG picture ("" = none)
+    std::string record;              ///< CSV trajectories ("" = none)
+    Real recordRate = 0;             ///< samples per second (Hz); 0 = every step
+    std::string summary;             ///< JSON summary ("" = none)
+    std::string picture;             ///< SVG picture ("" = none)
+    std::vector<Real> pictureTimes;  ///< moments drawn (s); empty: start, middle and end
     std::string view = "side";
-    std::vector<int> trace;  ///< body indices whose trajectories the picture draws
+    std::vector<int> trace;         ///< body indices whose trajectories the picture draws
+    std::vector<int> recordBodies;  ///< body indices the CSV holds; empty: every non-static one
 };
 
 struct Scene {
@@ -38,6 +77,9 @@ struct Scene {
     WorldDef world;
     Real duration = 5;  ///< simulated time (s), > 0
     std::vector<BodySpec> bodies;
+    std::vector<LumpedSpec> lumped;
+    std::vector<SpringSpec> springs;
+    std::vector<JointSpec> joints;
     OutputSpec outputs;
 };
 
@@ -47,10 +89,18 @@ struct BuiltScene {
     std::vector<BodyId> bodies;      ///< bodies[i] is scene.bodies[i]
     std::vector<ShapeId> shapes;     ///< every shape, grouped by body
     std::vector<Real> gravityScale;  ///< per body, for the potential energy
+    std::vector<SpringId> springs;   ///< "springs", then every generator's threads
+    std::vector<JointId> joints;     ///< joints[i] is scene.joints[i]
 };
 
 /// Parses a scene document (already overridden). `name` names it in messages.
 Scene parseScene(const Json& document, const std::string& name);
+
+/// Body selections for outputs and the command line: each item is a scene index ("3"), a body
+/// name ("ball", "net[0][4]") or a net's corners ("net.corners", four bodies). `where` names the
+/// list in messages ("outputs.trace[2]", "--trace").
+std::vector<int> selectBodies(const Scene& scene, const std::vector<std::string>& items,
+                              const std::string& where);
 
 /// Reads a JSON file; a syntax error names the file, line and column.
 Json readJsonFile(const std::string& path);

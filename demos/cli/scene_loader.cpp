@@ -107,8 +107,28 @@ ShapeDef parseShape(const Json& value, const std::string& path, const Materials&
     def.localPose.position = o.vec3("position", Vec3::Zero());
     def.localPose.rotation = o.orientation("orientation");
     def.material = materialAt(o, "material", materials);
+    def.filter = parseFilter(o);
     o.finish();
     return def;
+}
+
+CollisionFilter parseFilter(JsonObject& o) {
+    CollisionFilter filter;
+    if (!o.has("filter"))
+        return filter;
+    JsonObject f = o.object("filter");
+    for (const auto& [key, bits] :
+         {std::pair{"category", &filter.category}, {"mask", &filter.mask}}) {
+        const Json* v = f.find(key);
+        if (v == nullptr)
+            continue;
+        if (!v->is_number_integer() || v->get<long long>() < 0 ||
+            v->get<long long>() > 0xFFFFFFFFll)
+            failAt(f.pathOf(key), "expected an integer in [0, 4294967295] (a bit mask)");
+        *bits = static_cast<std::uint32_t>(v->get<long long>());
+    }
+    f.finish();
+    return filter;
 }
 
 namespace {
@@ -146,29 +166,56 @@ BodySpec parseBody(const Json& value, const std::string& path, std::size_t index
     }
     if (b.mass && b.shapes.empty())
         failAt(o.pathOf("mass"), "needs shapes to take its inertia from");
+    if (const Json* drag = o.find("drag")) {
+        if (b.def.type != BodyType::Dynamic)
+            failAt(o.pathOf("drag"), "only a dynamic body feels drag");
+        b.drag = parseDrag(*drag, o.pathOf("drag"));
+    }
     o.finish();
     return b;
 }
 
-OutputSpec parseOutputs(JsonObject o, std::size_t bodyCount) {
+/// A list of body selections (see selectBodies): indices or strings.
+std::vector<int> parseSelection(JsonObject& o, const std::string& key, const Scene& scene) {
+    const Json* list = o.find(key);
+    if (list == nullptr)
+        return {};
+    if (!list->is_array())
+        failAt(o.pathOf(key), "expected an array of body indices, names or \"<net>.corners\"");
+    std::vector<int> out;
+    for (std::size_t i = 0; i < list->size(); ++i) {
+        const Json& item = (*list)[i];
+        if (!item.is_string() && !item.is_number_integer())
+            failAt(indexPath(o.pathOf(key), i), "expected a body index or name, got ",
+                   typeName(item));
+        const std::string text =
+            item.is_string() ? item.get<std::string>() : std::to_string(item.get<long long>());
+        for (const int b : selectBodies(scene, {text}, indexPath(o.pathOf(key), i)))
+            out.push_back(b);
+    }
+    return out;
+}
+
+OutputSpec parseOutputs(JsonObject o, const Scene& scene) {
     OutputSpec out;
     out.record = o.string("record", "");
     out.recordRate = o.positive("recordRate", 0, true);
+    out.recordBodies = parseSelection(o, "recordBodies", scene);
     out.summary = o.string("summary", "");
     out.picture = o.string("picture", "");
-    out.view = o.choice("view", "side", {"side", "top", "front"});
-    if (const Json* trace = o.find("trace")) {
-        if (!trace->is_array())
-            failAt(o.pathOf("trace"), "expected an array of body indices");
-        for (std::size_t i = 0; i < trace->size(); ++i) {
-            const Json& t = (*trace)[i];
-            if (!t.is_number_integer() || t.get<long long>() < 0 ||
-                t.get<long long>() >= static_cast<long long>(bodyCount))
-                failAt(indexPath(o.pathOf("trace"), i), "expected a body index in [0, ", bodyCount,
-                       ")");
-            out.trace.push_back(t.get<int>());
+    if (const Json* times = o.find("pictureTimes")) {
+        if (!times->is_array() || times->empty() || times->size() > 12)
+            failAt(o.pathOf("pictureTimes"), "expected an array of 1 to 12 times (s)");
+        for (std::size_t i = 0; i < times->size(); ++i) {
+            const Json& t = (*times)[i];
+            // Times past the end draw the end, so --time can shorten a run that names them.
+            if (!t.is_number() || !(t.get<Real>() >= 0))
+                failAt(indexPath(o.pathOf("pictureTimes"), i), "expected a time >= 0 (s)");
+            out.pictureTimes.push_back(t.get<Real>());
         }
     }
+    out.view = o.choice("view", "side", {"side", "top", "front"});
+    out.trace = parseSelection(o, "trace", scene);
     o.finish();
     return out;
 }
@@ -189,7 +236,6 @@ Materials parseMaterials(JsonObject o, const Json& document) {
 
 Scene parseScene(const Json& document, const std::string& name) {
     JsonObject root(document, "");
-    root.reserve({"joints", "springs", "nets"});
     Scene scene;
     scene.name = name;
     scene.description = root.string("description", "");
@@ -207,11 +253,58 @@ Scene parseScene(const Json& document, const std::string& name) {
         if (!generators->is_array())
             failAt("generators", "expected an array, got ", typeName(*generators));
         for (std::size_t i = 0; i < generators->size(); ++i)
-            parseGenerator((*generators)[i], indexPath("generators", i), materials, scene.bodies);
+            parseGenerator((*generators)[i], indexPath("generators", i), materials, scene);
     }
-    scene.outputs = parseOutputs(root.object("outputs"), scene.bodies.size());
+    if (const Json* springs = root.find("springs"))
+        parseSprings(*springs, scene);
+    if (const Json* joints = root.find("joints"))
+        parseJoints(*joints, scene);
+    scene.outputs = parseOutputs(root.object("outputs"), scene);
     root.finish();
     return scene;
+}
+
+std::vector<int> selectBodies(const Scene& scene, const std::vector<std::string>& items,
+                              const std::string& where) {
+    const auto count = static_cast<long long>(scene.bodies.size());
+    std::vector<int> out;
+    for (const std::string& item : items) {
+        if (!item.empty() && std::all_of(item.begin(), item.end(), ::isdigit)) {
+            const long long index = item.size() > 12 ? count : std::stoll(item);
+            if (index >= count)
+                failAt(where, "no body with index ", item, " (the scene has bodies 0 to ",
+                       count - 1, ")");
+            out.push_back(static_cast<int>(index));
+            continue;
+        }
+        const std::string corners = ".corners";
+        if (item.size() > corners.size() &&
+            item.compare(item.size() - corners.size(), corners.size(), corners) == 0) {
+            const std::string net = item.substr(0, item.size() - corners.size());
+            const auto it =
+                std::find_if(scene.lumped.begin(), scene.lumped.end(), [&](const LumpedSpec& l) {
+                    return l.name == net && std::holds_alternative<NetDef>(l.def);
+                });
+            if (it == scene.lumped.end())
+                failAt(where, "\"", item, "\": no net generator named \"", net, "\"");
+            const NetDef& def = std::get<NetDef>(it->def);
+            const int first = static_cast<int>(it->firstBody), m = def.columns;
+            const int last = def.rows * m - 1;
+            // Lumped::corners' order: (0,0), (0,m-1), (n-1,0), (n-1,m-1).
+            for (const int k : {0, m - 1, last - (m - 1), last})
+                out.push_back(first + k);
+            continue;
+        }
+        const std::size_t before = out.size();
+        for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+            if (scene.bodies[i].name == item)
+                out.push_back(static_cast<int>(i));
+        }
+        if (out.size() == before)
+            failAt(where, "no body named \"", item, "\" (give an index, a name, or ",
+                   "\"<net>.corners\")");
+    }
+    return out;
 }
 
 Json readJsonFile(const std::string& path) {
@@ -350,9 +443,16 @@ BuiltScene buildScene(const Scene& scene) {
     } catch (const InvalidArgument& e) {
         fail(scene.source, ": world: ", e.what());
     }
-    BuiltScene built{std::move(*made), {}, {}, {}};
+    BuiltScene built{std::move(*made), {}, {}, {}, {}, {}};
     World& world = built.world;
     for (const BodySpec& spec : scene.bodies) {
+        if (spec.lumped >= 0) {
+            // The engine's generator makes all of a string's or net's nodes at its first one.
+            const LumpedSpec& lumped = scene.lumped[static_cast<std::size_t>(spec.lumped)];
+            if (built.bodies.size() == lumped.firstBody)
+                buildLumped(scene, lumped, built);
+            continue;
+        }
         try {
             const BodyId body = world.createBody(spec.def);
             for (const ShapeDef& shape : spec.shapes)
@@ -364,12 +464,15 @@ BuiltScene buildScene(const Scene& scene) {
                 mass.inertia *= scale;
                 world.setMassProperties(body, mass);
             }
+            if (spec.drag)
+                world.setDrag(body, *spec.drag);
             built.bodies.push_back(body);
             built.gravityScale.push_back(spec.def.gravityScale);
         } catch (const InvalidArgument& e) {
             fail(scene.source, ": ", spec.path, " (\"", spec.name, "\"): ", e.what());
         }
     }
+    buildConnections(scene, built);
     return built;
 }
 

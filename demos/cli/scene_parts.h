@@ -24,11 +24,36 @@ Material parseMaterial(const Json& value, const std::string& path, const Materia
 /// Absent: the scene's "default" material when it has one, else the engine's defaults.
 Material materialAt(JsonObject& o, const std::string& key, const Materials& materials);
 
-/// One shape of a body: {"type", geometry keys, "position", "orientation", "material"}.
+/// The member "filter": {"category": bits, "mask": bits}, each an integer in [0, 2^32).
+CollisionFilter parseFilter(JsonObject& o);
+
+/// One shape of a body: {"type", geometry keys, "position", "orientation", "material",
+/// "filter"}.
 ShapeDef parseShape(const Json& value, const std::string& path, const Materials& materials);
 
-/// Appends the bodies of one generator ("stack", "pyramid", "wall", "grid").
+/// Appends the bodies of one generator ("stack", "pyramid", "wall", "grid", "string", "net")
+/// to scene.bodies (and a string's or net's description to scene.lumped).
 void parseGenerator(const Json& value, const std::string& path, const Materials& materials,
-                    std::vector<BodySpec>& bodies);
+                    Scene& scene);
+
+/// A string or net generator (lumped_generators.cpp); `o` has had "type" and "name" read.
+void parseLumped(JsonObject& o, const std::string& type, const std::string& name,
+                 const Materials& materials, Scene& scene);
+
+/// The member "formulation": "implicit" or "explicit".
+SpringFormulation parseFormulation(JsonObject& o, SpringFormulation fallback);
+
+/// {"linear": N s/m, "quadratic": N s^2/m^2, "projection": [a, b, c] (diagonal) or 3 rows}.
+Drag parseDrag(const Json& value, const std::string& path);
+
+/// "springs" and "joints" (connections.cpp), read after every body so they can name any.
+void parseSprings(const Json& value, Scene& scene);
+void parseJoints(const Json& value, Scene& scene);
+
+/// Creates a string's or net's nodes and threads, appending them to built.bodies (and its
+/// colliding nodes' spheres to built.shapes, its threads to built.springs).
+void buildLumped(const Scene& scene, const LumpedSpec& spec, BuiltScene& built);
+/// Creates the springs and joints once every body exists.
+void buildConnections(const Scene& scene, BuiltScene& built);
 
 }  // namespace tumble::cli

@@ -146,6 +146,32 @@ public:
         panel_.items.push_back(std::move(item));
     }
 
+    void drawSpring(const Vec3& anchorA, const Vec3& anchorB, Real, bool slack) override {
+        const auto a = project(view_, anchorA);
+        const auto b = project(view_, anchorB);
+        Item item;
+        item.kind = Item::Kind::Line;
+        item.points = {{a[0], a[1]}, {b[0], b[1]}};
+        item.depth = 0.5 * (a[2] + b[2]);
+        item.fill = slack ? "#8fa3c7" : "#1f3f7a";
+        item.dashed = slack;
+        panel_.items.push_back(std::move(item));
+    }
+    void drawJoint(JointType type, const Vec3& anchorA, const Vec3& anchorB, const Vec3& axis,
+                   bool broken) override {
+        const auto a = project(view_, anchorA);
+        const auto b = project(view_, anchorB);
+        const auto n = project(view_, axis);
+        Item item;
+        item.kind = Item::Kind::Joint;
+        item.joint = type;
+        item.points = {{a[0], a[1]}, {b[0], b[1]}};
+        item.normal = {n[0], n[1]};
+        item.fill = broken ? "#999" : "#c25a00";
+        item.depth = -std::numeric_limits<double>::infinity();  // on top of the bodies it joins
+        panel_.items.push_back(std::move(item));
+    }
+
 private:
     void addSolid(const std::vector<Vec3>& points, const Vec3& centre) {
         std::vector<Point> flat;
@@ -188,6 +214,35 @@ std::vector<Point> clipHalfPlane(const Point& n, double offset, double u0, doubl
     return out;
 }
 
+/// A joint in pixels: a ring at A's anchor, a line to B's (a distance joint's rod or rope, or a
+/// joint pulled apart), and a hinge's or slider's axis as seen (a slider's dashed).
+void drawJointMark(std::string& svg, const Item& item, const Point& a, const Point& b) {
+    char buf[256];
+    const char* colour = item.fill.c_str();
+    std::snprintf(buf, sizeof buf,
+                  "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"2.5\" fill=\"none\" stroke=\"%s\" "
+                  "stroke-width=\"1.2\"/>\n",
+                  a[0], a[1], colour);
+    svg += buf;
+    if (std::hypot(b[0] - a[0], b[1] - a[1]) > 0.5) {
+        std::snprintf(buf, sizeof buf,
+                      "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" "
+                      "stroke-width=\"1.2\"/>\n",
+                      a[0], a[1], b[0], b[1], colour);
+        svg += buf;
+    }
+    const double n = std::hypot(item.normal[0], item.normal[1]);
+    if ((item.joint == JointType::Hinge || item.joint == JointType::Slider) && n > 1e-3) {
+        const double du = 9 * item.normal[0] / n, dv = -9 * item.normal[1] / n;
+        std::snprintf(buf, sizeof buf,
+                      "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" "
+                      "stroke-width=\"1.2\"%s/>\n",
+                      a[0] - du, a[1] - dv, a[0] + du, a[1] + dv, colour,
+                      item.joint == JointType::Slider ? " stroke-dasharray=\"2,2\"" : "");
+        svg += buf;
+    }
+}
+
 }  // namespace
 
 View parseView(const std::string& name) {
@@ -202,10 +257,14 @@ View parseView(const std::string& name) {
 
 SvgPicture::SvgPicture(View view, std::string title) : view_(view), title_(std::move(title)) {}
 
-void SvgPicture::addPanel(const World& world, std::span<const ShapeId> shapes, Real time) {
+void SvgPicture::addPanel(const World& world, std::span<const ShapeId> shapes,
+                          std::span<const SpringId> springs, std::span<const JointId> joints,
+                          Real time) {
     panels_.push_back({time, {}});
     PanelRecorder recorder(view_, panels_.back());
     describeWorld(world, shapes, recorder, kDrawShapes | kDrawContacts);
+    describeSprings(world, springs, recorder);
+    describeJoints(world, joints, recorder);
     std::stable_sort(panels_.back().items.begin(), panels_.back().items.end(),
                      [](const Item& a, const Item& b) { return a.depth > b.depth; });
 }
@@ -230,7 +289,8 @@ std::string SvgPicture::render() const {
     };
     for (const Panel& panel : panels_) {
         for (const Item& item : panel.items) {
-            if (item.kind == Item::Kind::Polygon)
+            if (item.kind == Item::Kind::Polygon || item.kind == Item::Kind::Line ||
+                item.kind == Item::Kind::Joint)
                 for (const Point& p : item.points)
                     grow(p, 0);
             else if (item.kind == Item::Kind::Circle)
@@ -289,8 +349,9 @@ std::string SvgPicture::render() const {
         bar *= 5;
     else if (bar * 2 <= (u1 - u0) / 4)
         bar *= 2;
-    put("<text x=\"%.0f\" y=\"36\" fill=\"#555\">%s; scale bar %g m; red: contact points "
-        "and normals; lines: traced centres of mass</text>\n",
+    put("<text x=\"%.0f\" y=\"36\" fill=\"#555\">%s; scale bar %g m; red: contacts; blue: "
+        "springs and threads (dashed: slack); orange: joints; dark lines: traced centres of "
+        "mass</text>\n",
         margin, axes, bar);
     for (std::size_t k = 0; k < panels_.size(); ++k) {
         const Panel& panel = panels_[k];
@@ -315,6 +376,14 @@ std::string SvgPicture::render() const {
                 put("<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#333\" "
                     "stroke-width=\"0.8\"/>\n",
                     c[0], c[1], r[0], r[1]);
+            } else if (item.kind == Item::Kind::Line) {
+                const Point a = px(item.points[0]), b = px(item.points[1]);
+                put("<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" "
+                    "stroke-width=\"0.8\"%s/>\n",
+                    a[0], a[1], b[0], b[1], item.fill.c_str(),
+                    item.dashed ? " stroke-dasharray=\"2,2\"" : "");
+            } else if (item.kind == Item::Kind::Joint) {
+                drawJointMark(svg, item, px(item.points[0]), px(item.points[1]));
             } else if (item.kind == Item::Kind::Contact) {
                 const Point p = px(item.points[0]);
                 const double n = std::hypot(item.normal[0], item.normal[1]);

@@ -24,8 +24,10 @@ class SvgPicture {
 public:
     SvgPicture(View view, std::string title);
 
-    /// A panel showing the listed shapes (and touching contacts) as they are now.
-    void addPanel(const World& world, std::span<const ShapeId> shapes, Real time);
+    /// A panel showing the listed shapes, springs and joints (and touching contacts) as they
+    /// are now.
+    void addPanel(const World& world, std::span<const ShapeId> shapes,
+                  std::span<const SpringId> springs, std::span<const JointId> joints, Real time);
     /// A point of a traced body's trajectory (its centre of mass, m) at `time` (s).
     void addTracePoint(int body, Real time, const Vec3& point);
     /// The SVG document.
@@ -34,12 +36,17 @@ public:
     /// What a panel holds, in view coordinates (u right, v up, m); depth grows away from the
     /// viewer.
     struct Item {
-        enum class Kind { Polygon, Circle, Plane, Contact, Rectangle } kind = Kind::Polygon;
-        std::vector<std::array<double, 2>> points;  ///< polygon outline; circle centre + rim point
-        std::array<double, 2> normal{};             ///< plane: n.q = offset; contact: direction
+        enum class Kind { Polygon, Circle, Plane, Contact, Rectangle, Line, Joint };
+        Kind kind = Kind::Polygon;
+        /// Polygon outline; circle centre + rim point; line ends; joint anchors A and B.
+        std::vector<std::array<double, 2>> points;
+        /// Plane: n.q = offset; contact: direction; joint: its axis as seen (hinge, slider).
+        std::array<double, 2> normal{};
         double offset = 0;
         double depth = 0;
-        std::string fill;
+        std::string fill;     ///< shapes; a line's or joint's stroke colour
+        bool dashed = false;  ///< a slack thread
+        JointType joint = JointType::Ball;
     };
     struct Panel {
         Real time = 0;

@@ -60,4 +60,28 @@ void describeWorld(const World& world, std::span<const ShapeId> shapes, DebugDra
     }
 }
 
+void describeSprings(const World& world, std::span<const SpringId> springs, DebugDraw& draw) {
+    for (const SpringId spring : springs) {
+        if (!world.isValid(spring))
+            continue;
+        const SpringDef& def = world.springDef(spring);
+        const SpringState state = world.springState(spring);
+        // A null bodyB means localAnchorB is already a world point.
+        const Vec3 b = def.bodyB.isNull() ? def.localAnchorB
+                                          : world.transform(def.bodyB).apply(def.localAnchorB);
+        draw.drawSpring(world.transform(def.bodyA).apply(def.localAnchorA), b, state.tension,
+                        state.slack);
+    }
+}
+
+void describeJoints(const World& world, std::span<const JointId> joints, DebugDraw& draw) {
+    for (const JointId joint : joints) {
+        if (!world.isValid(joint))
+            continue;
+        const JointState state = world.jointState(joint);
+        draw.drawJoint(world.jointDef(joint).type, state.anchorA, state.anchorB, state.axis,
+                       state.broken);
+    }
+}
+
 }  // namespace tumble

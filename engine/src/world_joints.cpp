@@ -149,7 +149,9 @@ JointState World::jointState(JointId id) const {
     const std::uint32_t index = w.joints.indexOf(id);
     const JointStepState& s = w.joints.state[index];
     const JointFrame f = jointFrame(w.joints.records[index], w.bodies);
-    return {s.force, s.torque, f.position, f.speed, s.broken};
+    const Vec3 anchorA = w.bodies.motion[f.a].center + f.rA;
+    return {s.force, s.torque, f.position, f.speed, s.broken, anchorA, anchorA + f.separation,
+            f.axis};
 }
 
 void World::setJointMotor(JointId id, bool enable, Real speed, Real maxForce) {

@@ -10,53 +10,17 @@
 #include <string>
 #include <vector>
 
-#include "command.h"
+#include "cli_helpers.h"
 #include "scene.h"
 
 namespace fs = std::filesystem;
-using tumble::cli::runCommand;
-
-namespace {
-
-struct Outcome {
-    int status = -1;
-    std::string out, err;
-};
-
-Outcome tumbleRun(std::vector<std::string> args) {
-    args.insert(args.begin(), "tumble");
-    std::ostringstream out, err;
-    Outcome o;
-    o.status = runCommand(args, out, err);
-    o.out = out.str();
-    o.err = err.str();
-    return o;
-}
-
-/// A fresh scratch directory per test.
-fs::path scratch(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / ("tumble_cli_test_" + name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
-
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-const std::string kFixtures = TUMBLE_CLI_TEST_DIR;
-
-}  // namespace
+using namespace tumble::cli::test;
 
 TEST(Command, ListsEveryBuiltInSceneOnItsOwnLine) {
     const Outcome o = tumbleRun({"scenes"});
     ASSERT_EQ(o.status, 0) << o.err;
-    for (const char* name :
-         {"bounce", "stack", "pyramid", "wall", "incline", "table", "cradle", "rain"})
+    for (const char* name : {"bounce", "stack", "pyramid", "wall", "incline", "table", "cradle",
+                             "rain", "string", "net-capture", "pendulum", "arm"})
         EXPECT_NE(("\n" + o.out).find(std::string("\n") + name + " "), std::string::npos) << name;
 }
 
@@ -72,7 +36,7 @@ TEST(Command, HelpAndVersionExitZeroAndUnknownOptionsTwo) {
 TEST(Command, EveryBuiltInSceneRunsHeadless) {
     const std::string dir = tumble::cli::sceneDirectory();
     const std::vector<std::string> names = tumble::cli::builtinScenes(dir);
-    ASSERT_GE(names.size(), 8u);
+    ASSERT_GE(names.size(), 12u);
     for (const std::string& name : names) {
         const Outcome o = tumbleRun({"run", name, "--time", "0.25", "--quiet"});
         EXPECT_EQ(o.status, 0) << name << ": " << o.err;
@@ -241,8 +205,19 @@ INSTANTIATE_TEST_SUITE_P(
         BadFile{"zero_box.json", "bodies[1].shapes[0].halfExtents: every half extent must be > 0"},
         BadFile{"restitution.json",
                 "bodies[0].shapes[0].material.restitution: restitution e = 1.5"},
-        BadFile{"joint.json", "joints: not yet supported"},
-        BadFile{"string_generator.json", "generators[0].type: generator \"string\" is not yet"},
+        BadFile{"joint.json", "joints[0].bodyB: no body with index 7 (the scene has 1 body)"},
+        BadFile{"joint_missing_body.json", "joints[1].bodyB: no body named \"lid\""},
+        BadFile{"hinge_zero_axis.json", "joints[0].axis: a hinge's axis must not be zero"},
+        BadFile{"joint_limits.json",
+                "joints[0].limits: lower = 1 > upper = -1: lower must be <= upper"},
+        BadFile{"joint_static_bodies.json", "joints[0]: JointDef: neither body"},
+        BadFile{"spring_negative_k.json", "springs[0].stiffness: k = -5 N/m must be >= 0"},
+        BadFile{"spring_rest_length.json", "springs[0].restLength: must be > 0 (got 0)"},
+        BadFile{"net_too_small.json",
+                "generators[0]: a net needs at least 2 x 2 nodes (got rows x columns = 1 x 20)"},
+        BadFile{"string_generator.json",
+                "generators[0].thread.axialRigidity: must be > 0 (got -1)"},
+        BadFile{"negative_drag.json", "bodies[0].drag.linear: must be >= 0 (got -0.1)"},
         BadFile{"missing_material.json", "bodies[0].shapes[0].material: no material named"},
         BadFile{"dynamic_half_space.json", "bodies[0] (\"a\"): ShapeDef.geometry is a half-space"},
         BadFile{"bad_choice.json", "world.solver.friction: \"anisotropic\" is not one of"}),

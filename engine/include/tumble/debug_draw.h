@@ -12,7 +12,9 @@
 #include "tumble/collision/aabb.h"
 #include "tumble/collision/shape.h"
 #include "tumble/core/math.h"
+#include "tumble/joint.h"
 #include "tumble/shape.h"
+#include "tumble/spring.h"
 
 namespace tumble {
 
@@ -42,6 +44,14 @@ public:
     /// negative when penetrating).
     virtual void drawContact(const Vec3& /*point*/, const Vec3& /*normal*/, Real /*separation*/) {}
     virtual void drawAabb(const Aabb& /*box*/) {}
+    /// A spring-damper or thread between its anchors (m); its tension of the last step (N,
+    /// positive pulling) and whether it was a slack tension-only element.
+    virtual void drawSpring(const Vec3& /*anchorA*/, const Vec3& /*anchorB*/, Real /*tension*/,
+                            bool /*slack*/) {}
+    /// A joint: the anchors carried by A and by B (m; together while it holds, a distance
+    /// joint's rod ends), the hinge or slider axis (unit) and whether it broke.
+    virtual void drawJoint(JointType /*type*/, const Vec3& /*anchorA*/, const Vec3& /*anchorB*/,
+                           const Vec3& /*axis*/, bool /*broken*/) {}
 };
 
 /// What describeWorld draws (bits, combined with |).
@@ -61,5 +71,12 @@ void describeShape(const World& world, ShapeId shape, DebugDraw& draw);
 /// skipped.
 void describeWorld(const World& world, std::span<const ShapeId> shapes, DebugDraw& draw,
                    std::uint32_t flags = kDrawShapes);
+
+/// Draws the listed springs (threads of strings and nets included) at the current poses, with
+/// the tension of the last step; invalid ids are skipped.
+void describeSprings(const World& world, std::span<const SpringId> springs, DebugDraw& draw);
+
+/// Draws the listed joints at the current poses; invalid ids are skipped.
+void describeJoints(const World& world, std::span<const JointId> joints, DebugDraw& draw);
 
 }  // namespace tumble

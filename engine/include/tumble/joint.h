@@ -78,6 +78,11 @@ struct JointState {
     Real position = 0;
     Real speed = 0;       ///< d(position)/dt at the current velocities (rad/s or m/s)
     bool broken = false;  ///< broke in some step (see JointDef::breakForce)
+    /// The anchors carried by A and by B (or the world) at the current poses (m, world): they
+    /// coincide while a ball, hinge or fixed joint holds; a distance joint's are the rod's ends.
+    Vec3 anchorA = Vec3::Zero();
+    Vec3 anchorB = Vec3::Zero();
+    Vec3 axis = Vec3::UnitZ();  ///< hinge or slider axis carried by A, world, unit
 };
 
 }  // namespace tumble
