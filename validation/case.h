@@ -62,6 +62,7 @@ ValidationCase pendulumCase();
 ValidationCase jointChainCase();
 ValidationCase fiveBodyPendulumCase();
 ValidationCase motorCase();
+ValidationCase pdArmCase();
 
 /// Every case, in the order the runner lists them.
 inline std::vector<ValidationCase> allCases() {
@@ -71,7 +72,7 @@ inline std::vector<ValidationCase> allCases() {
             tableCase(),      tunnelCase(),       springStabilityCase(),
             tautStringCase(), hangingChainCase(), stiffNetCase(),
             pendulumCase(),   jointChainCase(),   fiveBodyPendulumCase(),
-            motorCase()};
+            motorCase(),      pdArmCase()};
 }
 
 /// Least-squares slope of log(y) against log(x): the order of convergence.

@@ -144,6 +144,10 @@ void worldDef(const WorldDef& def) {
     }
     if (!(std::isfinite(def.timeToSleep) && def.timeToSleep > 0))
         fail("WorldDef.timeToSleep = ", def.timeToSleep, " (s) must be finite and > 0");
+    if (!(def.impactSpeedThreshold > 0)) {
+        fail("WorldDef.impactSpeedThreshold = ", def.impactSpeedThreshold,
+             " (m/s) must be > 0 (infinity: no impact events)");
+    }
 }
 
 }  // namespace tumble::checks

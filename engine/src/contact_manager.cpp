@@ -42,6 +42,10 @@ void carryImpulses(const Contact& previous, Contact& next) {
     }
 }
 
+ContactEvent touchEvent(const Contact& contact) {
+    return {contact.shapeA, contact.shapeB, contact.bodyA, contact.bodyB};
+}
+
 }  // namespace
 
 Transform shapePose(const ShapeRecord& shape, const BodyStore& bodies) {
@@ -180,6 +184,8 @@ void ContactManager::markPlaced(std::uint32_t proxy) {
 
 void ContactManager::destroy(std::uint32_t slot, BodyStore& bodies) {
     Record& record = pool_[slot];
+    if (events != nullptr && record.contact.manifold.pointCount > 0)
+        events->contactEnd.push_back(touchEvent(record.contact));
     unlink(slot, 0, bodies.info[bodies.indexOf(record.contact.bodyA)]);
     unlink(slot, 1, bodies.info[bodies.indexOf(record.contact.bodyB)]);
     record.alive = false;
@@ -285,6 +291,14 @@ void ContactManager::collideActive(const ShapeStore& shapes, BodyStore& bodies,
         collide(shapeA.def.geometry, shapePose(shapeA, bodies), shapeB.def.geometry,
                 shapePose(shapeB, bodies), margin, next.manifold);
         carryImpulses(record.contact, next);
+        if (events != nullptr) {
+            const bool was = record.contact.manifold.pointCount > 0;
+            const bool is = next.manifold.pointCount > 0;
+            if (!was && is)
+                events->contactBegin.push_back(touchEvent(next));
+            else if (was && !is)
+                events->contactEnd.push_back(touchEvent(next));
+        }
         record.contact = next;
 
         // Touching a sleeping body wakes it -- unless the toucher is a kinematic body at rest

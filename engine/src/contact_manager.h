@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "body_store.h"
+#include "event_log.h"
 #include "shape_store.h"
 #include "step_context.h"
 #include "tumble/collision/broadphase.h"
@@ -54,6 +55,10 @@ public:
     /// stay listed (isActive false) until the next one.
     std::span<const std::uint32_t> activeSlots() const { return active_; }
     bool isActive(std::uint32_t slot) const { return pool_[slot].active; }
+    /// False once the contact is destroyed (its slot may be reused after the next narrowphase).
+    bool isAlive(std::uint32_t slot) const { return pool_[slot].alive; }
+    /// One past the largest slot in use: per-contact side arrays are sized by it.
+    std::uint32_t slotCount() const { return static_cast<std::uint32_t>(pool_.size()); }
     Contact& contact(std::uint32_t slot) { return pool_[slot].contact; }
     const Contact& contact(std::uint32_t slot) const { return pool_[slot].contact; }
     /// Marks a parked contact active; it is listed at flushActivations() or the next
@@ -88,7 +93,11 @@ public:
     std::uint32_t shapeOfProxy(std::uint32_t proxy) const { return proxyToShape_[proxy]; }
 
     Real contactMargin = 0.02;  ///< speculative distance added to h |v_rel| (m)
-    Real aabbMargin = 0.1;      ///< fat box growth (m)
+    /// Where contact begin and end events go (the world's pending log); none when null. A
+    /// contact begins when its manifold gets its first points and ends when it loses its last
+    /// ones or is destroyed with points (its pair separated, a shape or body was destroyed).
+    EventLog* events = nullptr;
+    Real aabbMargin = 0.1;  ///< fat box growth (m)
 
 private:
     static constexpr std::uint32_t kNone = 0xFFFFFFFF;

@@ -22,7 +22,7 @@ void Islands::wake(BodyStore& bodies, ContactManager& contacts, std::uint32_t in
         return;
     stack_.clear();
     stack_.push_back(index);
-    bodies.markAwake(index);
+    markAwake(bodies, index);
     while (!stack_.empty()) {
         const std::uint32_t body = stack_.back();
         stack_.pop_back();
@@ -33,7 +33,7 @@ void Islands::wake(BodyStore& bodies, ContactManager& contacts, std::uint32_t in
             bodies, body, [&](std::uint32_t slot, const Contact& contact, std::uint32_t other) {
                 contacts.activate(slot);
                 if (isTouching(contact) && bodies.isSleeping(other)) {
-                    bodies.markAwake(other);
+                    markAwake(bodies, other);
                     stack_.push_back(other);
                 }
             });
@@ -183,7 +183,7 @@ void Islands::updateSleep(BodyStore& bodies, ContactManager& contacts, const Spr
 void Islands::putToSleep(BodyStore& bodies, ContactManager& contacts,
                          std::span<const std::uint32_t> indices) {
     for (const std::uint32_t index : indices) {
-        bodies.markNotAwake(index);
+        markAsleep(bodies, index);
         BodyMotion& m = bodies.motion[index];
         m.linearVelocity.setZero();
         m.angularVelocity.setZero();
@@ -199,6 +199,18 @@ void Islands::putToSleep(BodyStore& bodies, ContactManager& contacts,
                                         contacts.deactivate(slot);
                                 });
     }
+}
+
+void Islands::markAwake(BodyStore& bodies, std::uint32_t index) {
+    bodies.markAwake(index);
+    if (events != nullptr)
+        events->sleep.push_back({bodies.idAt(index), false});
+}
+
+void Islands::markAsleep(BodyStore& bodies, std::uint32_t index) {
+    bodies.markNotAwake(index);
+    if (events != nullptr)
+        events->sleep.push_back({bodies.idAt(index), true});
 }
 
 std::uint32_t Islands::find(std::uint32_t position) {

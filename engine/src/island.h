@@ -27,6 +27,7 @@
 
 #include "body_store.h"
 #include "contact_manager.h"
+#include "event_log.h"
 #include "joint_store.h"
 #include "spring_store.h"
 #include "step_context.h"
@@ -61,7 +62,13 @@ public:
                      const JointStore& joints, const StepContext& context,
                      const WorldDef& settings);
 
+    /// Where sleep and wake events go (the world's pending log); none when null.
+    EventLog* events = nullptr;
+
 private:
+    /// markAwake / markNotAwake, with the event.
+    void markAwake(BodyStore& bodies, std::uint32_t index);
+    void markAsleep(BodyStore& bodies, std::uint32_t index);
     void putToSleep(BodyStore& bodies, ContactManager& contacts,
                     std::span<const std::uint32_t> indices);
     /// Union-find over awake-list positions: the set's root, halving the path on the way.

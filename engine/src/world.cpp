@@ -32,6 +32,8 @@ World::World(const WorldDef& def) : impl_(std::make_unique<Impl>()) {
     impl_->settings = def;
     impl_->contacts.contactMargin = def.contactMargin;
     impl_->contacts.aabbMargin = def.aabbMargin;
+    impl_->contacts.events = &impl_->pendingEvents;
+    impl_->islands.events = &impl_->pendingEvents;
 }
 
 World::~World() = default;
@@ -254,6 +256,7 @@ void World::applyAngularImpulse(BodyId id, const Vec3& impulse) {
 
 StepStatus World::step() {
     Impl& w = *impl_;
+    w.runPreStep(*this);  // application time, not the engine's: before the clock starts
     const Clock::time_point start = Clock::now();
     const StepContext context = w.context();
     if (w.springs.count() > 0)
@@ -265,6 +268,7 @@ StepStatus World::step() {
     w.joints.saveState();
 
     w.profile.forces = timed([&] {
+        w.controllers.apply(w.joints, w.bodies, context.h);
         w.forceElements.apply(w.springs, w.drag, w.bodies);
         integrateVelocities(w.bodies, context);
         w.forceElements.restore(w.bodies);
@@ -292,14 +296,18 @@ StepStatus World::step() {
             status.spring = w.springs.strongestOn(status.body);
             w.springs.restoreState();
             w.joints.restoreState();
+            w.controllers.restore();
         } else {
             w.releaseBrokenJoints();
+            w.impacts.update(w.contacts, w.bodies, w.settings.impactSpeedThreshold,
+                             w.pendingEvents.impact);
         }
     });
     w.profile.sleep = timed([&] {
         if (status.ok())
             w.islands.updateSleep(w.bodies, w.contacts, w.springs, w.joints, context, w.settings);
     });
+    w.publishEvents();
 
     w.profile.total = std::chrono::duration<double>(Clock::now() - start).count();
     return status;

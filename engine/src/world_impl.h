@@ -3,9 +3,13 @@
 /// the step, world_shapes.cpp for shapes and contacts, world_queries.cpp for queries).
 
 #include <cstdint>
+#include <functional>
 
 #include "body_store.h"
 #include "contact_manager.h"
+#include "controllers.h"
+#include "event_log.h"
+#include "impacts.h"
 #include "island.h"
 #include "joint_store.h"
 #include "joints.h"
@@ -39,6 +43,12 @@ struct World::Impl {
     DragStore drag;
     ForceElements forceElements;
     SolverStats solverStats;
+    Controllers controllers;
+    std::function<void(World&, Real)> preStep;
+    bool inPreStep = false;
+    ImpactTracker impacts;
+    EventLog pendingEvents;  ///< appended to by the stages and the API
+    EventLog events;         ///< published when a step returns
 
     StepContext context() const {
         return {settings.timeStep, 1 / settings.timeStep, settings.gravity};
@@ -76,10 +86,25 @@ struct World::Impl {
         }
     }
 
-    // Joints that broke in the step just taken stop filtering their bodies' collisions.
+    // Joints that broke in the step just taken stop filtering their bodies' collisions, and
+    // are reported.
     void releaseBrokenJoints() {
-        for (const std::uint32_t index : solve.brokenJoints())
+        for (const std::uint32_t index : solve.brokenJoints()) {
             setJointedPairsExcluded(joints, shapes, bodies, contacts, index, false);
+            const JointDef& def = joints.records[index].def;
+            const JointStepState& state = joints.state[index];
+            pendingEvents.jointBreak.push_back(
+                {joints.idAt(index), def.bodyA, def.bodyB, state.force, state.torque});
+        }
+    }
+
+    // Calls the application's pre-step callback, if any (world_control.cpp).
+    void runPreStep(World& world);
+
+    // The events of the step just taken, and of the API calls before it, become readable.
+    void publishEvents() {
+        events.swap(pendingEvents);
+        pendingEvents.clear();
     }
 
     // A body is being destroyed: its joints go (their exclusions go with its shapes), and what
