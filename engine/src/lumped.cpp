@@ -48,11 +48,12 @@ BodyId addNode(World& world, const NodeDef& node, Real mass, const Vec3& positio
     body.mass.inertia = Mat3::Identity() * (0.4 * mass * node.radius * node.radius);
     const BodyId id = world.createBody(body);
     if (node.collide) {
-        ShapeDef shape;
-        shape.geometry = Sphere{node.radius};
-        shape.material = node.material;
-        shape.filter = node.filter;
-        shape.updateBodyMass = false;
+        // Built whole: assigning the variant member of a default ShapeDef tripped GCC 12's
+        // -Wmaybe-uninitialized (a false positive on the hull alternative's shared_ptr).
+        const ShapeDef shape{.geometry = Sphere{node.radius},
+                             .material = node.material,
+                             .filter = node.filter,
+                             .updateBodyMass = false};
         world.createShape(id, shape);
     }
     return id;
