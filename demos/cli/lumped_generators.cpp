@@ -177,11 +177,12 @@ void buildLumped(const Scene& scene, const LumpedSpec& spec, BuiltScene& built) 
         for (std::size_t k = 0; k < made.nodes.size(); ++k) {
             const BodyId id = made.nodes[k];
             if (node.collide) {
-                ShapeDef sphere;
-                sphere.geometry = Sphere{node.radius};
-                sphere.material = node.material;
-                sphere.filter = node.filter;
-                sphere.updateBodyMass = false;  // the node's mass and inertia are the generator's
+                // Built whole (GCC 12 -Wmaybe-uninitialized false positive on assigning the
+                // variant); the node's mass and inertia are the generator's.
+                const ShapeDef sphere{.geometry = Sphere{node.radius},
+                                      .material = node.material,
+                                      .filter = node.filter,
+                                      .updateBodyMass = false};
                 built.shapes.push_back(world.createShape(id, sphere));
             }
             const BodySpec& body = scene.bodies[spec.firstBody + k];

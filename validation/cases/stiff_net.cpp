@@ -34,14 +34,14 @@ struct Scene {
 };
 
 void build(Scene& scene, SpringFormulation formulation, int size) {
-    ShapeDef ground;
-    ground.geometry = HalfSpace{Vec3::UnitZ(), 0};
+    // Shape definitions built whole: assigning the variant tripped GCC 12's
+    // -Wmaybe-uninitialized at -O1 (a false positive).
+    const ShapeDef ground{.geometry = HalfSpace{Vec3::UnitZ(), 0}};
     BodyDef fixed;
     fixed.type = BodyType::Static;
     scene.world.createShape(scene.world.createBody(fixed), ground);
     fixed.position = Vec3(0, 0, 0.5 * kTargetTop);
-    ShapeDef target;
-    target.geometry = Cylinder{0.4, 0.5 * kTargetTop};
+    const ShapeDef target{.geometry = Cylinder{0.4, 0.5 * kTargetTop}};
     scene.world.createShape(scene.world.createBody(fixed), target);
 
     NetDef net;
