@@ -231,20 +231,51 @@ void toCcd(const Vec3& v, ccd_vec3_t* out) {
     out->v[2] = v.z();
 }
 
-/// Support of the full (rounded) shape, world frame.
-void ccdSupport(const void* object, const ccd_vec3_t* direction, ccd_vec3_t* out) {
-    const auto& o = *static_cast<const PosedCore*>(object);
-    const Vec3 d = fromCcd(*direction);
+/// The full (rounded) shape's farthest point along `d` (world, need not be unit).
+Vec3 roundedSupport(const PosedCore& o, const Vec3& d) {
     Vec3 point = o.support(d);
     const Real length = d.norm();
     if (o.radius > 0 && length > 0)
         point += (o.radius / length) * d;
-    toCcd(point, out);
+    return point;
+}
+
+/// What libccd holds as one object: a posed core, plus, for the first object, the other one and
+/// a count of support queries. libccd's EPA loop has no iteration cap: it stops only when a new
+/// support point gains less than the tolerance, which on a curved boundary seen from near its
+/// centre takes thousands of queries (a sphere on a capsule's axis: 70 ms for one pair) or, with
+/// rounding, never ends (the fuzzer's sphere around a millimetre cylinder). Past the budget the
+/// first object answers so that the Minkowski support equals the query direction, which is the
+/// nearest polytope point EPA asks from: no gain, so EPA stops on its best face so far, and
+/// penetrationContact refines that normal by GJK.
+struct CcdObject {
+    const PosedCore* core;
+    bool rounded;                      ///< the full shape, else the core alone
+    const PosedCore* other = nullptr;  ///< set on the first object only
+    int* supportQueries = nullptr;     ///< set on the first object only
+
+    Vec3 support(const PosedCore& o, const Vec3& d) const {
+        return rounded ? roundedSupport(o, d) : o.support(d);
+    }
+};
+
+/// Support queries allowed per libccd call: EPA on polytopes and on off-centre curved contacts
+/// settles in tens; the budget only ends the loops that would not.
+constexpr int kCcdSupportBudget = 512;
+
+void ccdSupport(const void* object, const ccd_vec3_t* direction, ccd_vec3_t* out) {
+    const auto& o = *static_cast<const CcdObject*>(object);
+    const Vec3 d = fromCcd(*direction);
+    if (o.supportQueries != nullptr && ++*o.supportQueries > kCcdSupportBudget) {
+        toCcd(d + o.support(*o.other, -d), out);
+        return;
+    }
+    toCcd(o.support(*o.core, d), out);
 }
 
 /// An interior point (world), which MPR starts from.
 void ccdCenter(const void* object, ccd_vec3_t* out) {
-    const auto& o = *static_cast<const PosedCore*>(object);
+    const auto& o = *static_cast<const CcdObject*>(object)->core;
     Vec3 local = Vec3::Zero();
     if (const auto* hull = std::get_if<ConvexHull>(o.shape))
         local = hull->data->centroid;
@@ -255,8 +286,8 @@ void ccdCenter(const void* object, ccd_vec3_t* out) {
 /// its simplex then holds the origin on a face and EPA returns depth 0 with a NaN direction. A
 /// start direction off every axis avoids those ties.
 void ccdFirstDirection(const void* objectA, const void* objectB, ccd_vec3_t* out) {
-    const auto& a = *static_cast<const PosedCore*>(objectA);
-    const auto& b = *static_cast<const PosedCore*>(objectB);
+    const auto& a = *static_cast<const CcdObject*>(objectA)->core;
+    const auto& b = *static_cast<const CcdObject*>(objectB)->core;
     const Vec3 generic(0.2672612419124244, 0.5345224838248488, 0.8017837257372732);
     const Vec3 between = b.position - a.position;
     toCcd(between + (1e-3 * between.norm() + 1e-6) * generic, out);
@@ -276,11 +307,20 @@ bool ccdPenetrationNormal(const PosedCore& a, const PosedCore& b, PenetrationMet
     ccd.max_iterations = kCcdMaxIterations;
     ccd.epa_tolerance = kEpaTolerance;
     ccd.mpr_tolerance = kMprTolerance;
+    // A rounded shape is its core swollen by a ball, so the cores' penetration direction is the
+    // shapes' (the depth grows by the radii, which penetrationAlong adds). EPA on a core is far
+    // cheaper: a sphere's core is a point, where its full surface is curved everywhere. Two
+    // rounded cores (point, segment) may have a flat Minkowski difference, which EPA cannot
+    // start from, so those pairs keep their full shapes.
+    const bool rounded = a.radius > 0 && b.radius > 0;
+    int supportQueries = 0;
+    const CcdObject first{&a, rounded, &b, &supportQueries}, second{&b, rounded};
     ccd_real_t depth = 0;
     ccd_vec3_t direction, position;
-    const int status = method == PenetrationMethod::Epa
-                           ? ccdGJKPenetration(&a, &b, &ccd, &depth, &direction, &position)
-                           : ccdMPRPenetration(&a, &b, &ccd, &depth, &direction, &position);
+    const int status =
+        method == PenetrationMethod::Epa
+            ? ccdGJKPenetration(&first, &second, &ccd, &depth, &direction, &position)
+            : ccdMPRPenetration(&first, &second, &ccd, &depth, &direction, &position);
     if (status != 0)
         return false;
     // libccd's direction is the one to move B along to separate it from A: from A to B.

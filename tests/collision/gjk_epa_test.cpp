@@ -536,6 +536,48 @@ TEST(GjkEpa, CentredStackAvoidsLibccdDegenerateSimplex) {
     }
 }
 
+TEST(GjkEpa, SphereCentredOnACylinderEndsWithTheShallowerAxis) {
+    // From the sphere's centre every direction is nearly as deep, and libccd's EPA (no iteration
+    // cap) refined the sphere's boundary without end: the fuzzer's timeout. The depth is the
+    // sphere's radius plus the cylinder's nearer side: its radius, or its half length.
+    const Quat tilt(Eigen::AngleAxis<Real>(0.7, Vec3(1, 2, 3).normalized()));
+    struct Case {
+        Sphere sphere;
+        Cylinder cylinder;
+        Vec3 at;
+    };
+    for (const Case& c : {Case{Sphere{0.5}, Cylinder{1e-3, 4e-4}, Vec3(0.015, 238.575, -996.094)},
+                          Case{Sphere{0.5}, Cylinder{1e-3, 4e-4}, Vec3::Zero()},
+                          Case{Sphere{0.5}, Cylinder{10, 20}, Vec3::Zero()},
+                          Case{Sphere{2}, Cylinder{0.3, 0.1}, Vec3(1e5, 0, 0)}}) {
+        const Real expected = c.sphere.radius + std::min(c.cylinder.radius, c.cylinder.halfLength);
+        for (const Vec3& offset : {Vec3(Vec3::Zero()), Vec3(1.1e-5, -0.7e-5, 0.3e-5)}) {
+            const ConvexContact contact =
+                queryConvex(c.sphere, pose(c.at + offset), c.cylinder, pose(c.at, tilt));
+            EXPECT_NEAR(-contact.separation, expected, 2e-5)
+                << "sphere " << c.sphere.radius << " in cylinder " << c.cylinder.radius;
+            EXPECT_NEAR(contact.normal.norm(), 1, 1e-12);
+        }
+    }
+}
+
+TEST(GjkEpa, SphereCentredOnACapsuleAxisEndsEpaAtItsSupportBudget) {
+    // Two rounded cores give EPA the full, curved shapes (their cores' difference is flat). A
+    // small sphere a nanometre off a capsule's axis, far from the origin, sees the round side
+    // equally deep all round, and libccd's EPA takes over 10x the support budget to settle
+    // (found by a search over such pairs); the budget ends it early. The pair has its closed form
+    // in the narrowphase; the general query must still give the exact depth: the two radii.
+    const Vec3 at(-291.02095811311659, -617.30220292626223, 501.64198914892165);
+    const Vec3 off(1.1777785959609106e-09, 5.5195533177061857e-10, 2.94501641506534e-11);
+    const Quat turn(-0.12196489161370491, 0.67654271430654556, -0.2370844137291494,
+                    0.68644409947139506);
+    const Sphere sphere{0.0010964156526219017};
+    const Capsule capsule{0.23249739287426008, 1.8535814418889558};
+    const ConvexContact contact =
+        queryConvex(sphere, pose(at), capsule, pose(at + off, turn.normalized()));
+    EXPECT_NEAR(-contact.separation, sphere.radius + capsule.radius, 1e-9);
+}
+
 // ---- manifolds --------------------------------------------------------------------------------
 
 /// Expects `out` to hold exactly the `expected` positions (any order) at `separation`.
