@@ -12,8 +12,13 @@
 // 3. Below the boundary the string's energy shows no secular drift over 1000 periods of its
 //    fundamental: the least-squares slope of E(t) times the duration, relative to the mean energy
 //    (semi-implicit Euler's energy oscillates step to step; it is its mean that must not move).
-//    Claimed for E (kinetic + elastic) and for the modified energy E + (h / 2) v . F at
-//    omega_e h = 0.5; both reported at 0.9, where neither holds (see run()).
+//    Claimed for E (kinetic + elastic) and for the modified energy E + (h / 2) v . F at small
+//    amplitude (0.3 mm on 0.1 m links: the linear regime the boundary is a statement about) for
+//    omega_e h from 0.5 to 0.97. At 1 mm the string is nonlinear enough (axial-transverse
+//    coupling) for a step-size resonance of the scheme itself: E falls by half over 1000 periods
+//    at 0.9 and by 0.5 % at 0.88, not at 0.86 or 0.95, and not at 0.3 mm. It is the scheme's, not
+//    Tumble's: an independent semi-implicit Euler of the same string (referenceDrift, no Tumble
+//    code) drifts the same to four digits, which is claimed.
 // 4. The same string with implicit springs at omega_e h = 100 stays bounded (largest excursion
 //    over the last quarter at most twice that over the first). Its energy is reported, not
 //    claimed: exact implicit Euler would only dissipate, but the solver's fixed PGS budget does
@@ -85,25 +90,86 @@ struct StringRun {
 };
 
 // N masses of m = 0.01 kg, spacing 0.1 m, springs of k = 100 N/m (omega_e = 100 rad/s) pulled
-// 1 % past their rest length, between fixed points; every mass displaced a little along and
-// across the string in a deterministic pattern (alternating signs excite the highest mode).
-StringRun runString(int n, double omegaEH, SpringFormulation formulation, int steps, bool energy) {
-    const double m = 0.01;
-    const double k = 100;
-    const double spacing = 0.1;
-    const double h = omegaEH / std::sqrt(k / m);
+// 1 % past their rest length, between fixed points.
+constexpr double kMass = 0.01;
+constexpr double kStiffness = 100;
+constexpr double kSpacing = 0.1;
+constexpr double kRestLength = 0.99 * kSpacing;
+
+// Mass j's (1..N) start: displaced along and across the string in a deterministic pattern
+// (alternating signs excite the highest mode), `amplitude` times about a millimetre.
+Vec3 stringStart(int j, double amplitude) {
+    const double sign = (j % 2 == 0) ? 1 : -1;
+    const Vec3 offset(1e-3 * sign + 5e-4 * std::sin(1.3 * j), 1e-3 * std::sin(0.7 * j),
+                      1e-3 * std::cos(2.1 * j));
+    return Vec3(kSpacing * j, 0, 0) + amplitude * offset;
+}
+
+// Least-squares slope of E(t) times the duration, relative to the mean of E.
+class DriftFit {
+public:
+    void add(double t, double e) {
+        ++count_;
+        st_ += t;
+        se_ += e;
+        stt_ += t * t;
+        ste_ += t * e;
+    }
+    double drift(double duration) const {
+        const double slope = (count_ * ste_ - st_ * se_) / (count_ * stt_ - st_ * st_);
+        return slope * duration / (se_ / count_);
+    }
+
+private:
+    double count_ = 0, st_ = 0, se_ = 0, stt_ = 0, ste_ = 0;
+};
+
+// The same string integrated by a plain semi-implicit Euler written here, with nothing of
+// Tumble's: its energy drift is what the scheme itself gives.
+double referenceDrift(int n, double omegaEH, double amplitude, int steps) {
+    const double h = omegaEH / std::sqrt(kStiffness / kMass);
+    std::vector<Vec3> x(n + 2), v(n + 2, Vec3::Zero()), f(n + 2);
+    x[0] = Vec3::Zero();
+    x[n + 1] = Vec3(kSpacing * (n + 1), 0, 0);
+    for (int j = 1; j <= n; ++j)
+        x[j] = stringStart(j, amplitude);
+    DriftFit fit;
+    for (int i = 0; i < steps; ++i) {
+        for (Vec3& force : f)
+            force.setZero();
+        for (int j = 0; j <= n; ++j) {
+            const Vec3 d = x[j + 1] - x[j];
+            const double length = d.norm();
+            const Vec3 pull = kStiffness * (length - kRestLength) * d / length;
+            f[j] += pull;
+            f[j + 1] -= pull;
+        }
+        double energy = 0;
+        for (int j = 1; j <= n; ++j) {
+            v[j] += h * f[j] / kMass;
+            x[j] += h * v[j];
+            energy += 0.5 * kMass * v[j].squaredNorm();
+        }
+        for (int j = 0; j <= n; ++j) {
+            const double stretch = (x[j + 1] - x[j]).norm() - kRestLength;
+            energy += 0.5 * kStiffness * stretch * stretch;
+        }
+        fit.add(h * (i + 1), energy);
+    }
+    return fit.drift(h * steps);
+}
+
+StringRun runString(int n, double omegaEH, SpringFormulation formulation, int steps, bool energy,
+                    double amplitude = 1) {
+    const double h = omegaEH / std::sqrt(kStiffness / kMass);
     World world(quiet(h));
     std::vector<BodyId> masses;
-    for (int j = 1; j <= n; ++j) {
-        const double sign = (j % 2 == 0) ? 1 : -1;
-        const Vec3 offset(1e-3 * sign + 5e-4 * std::sin(1.3 * j), 1e-3 * std::sin(0.7 * j),
-                          1e-3 * std::cos(2.1 * j));
-        masses.push_back(addPointMass(world, Vec3(spacing * j, 0, 0) + offset, m));
-    }
+    for (int j = 1; j <= n; ++j)
+        masses.push_back(addPointMass(world, stringStart(j, amplitude), kMass));
     std::vector<SpringId> springs;
     SpringDef def;
-    def.restLength = 0.99 * spacing;
-    def.stiffness = k;
+    def.restLength = kRestLength;
+    def.stiffness = kStiffness;
     def.formulation = formulation;
     for (int j = 0; j <= n; ++j) {
         if (j == 0) {
@@ -113,7 +179,7 @@ StringRun runString(int n, double omegaEH, SpringFormulation formulation, int st
         } else if (j == n) {
             def.bodyA = masses.back();
             def.bodyB = BodyId{};
-            def.localAnchorB = Vec3(spacing * (n + 1), 0, 0);
+            def.localAnchorB = Vec3(kSpacing * (n + 1), 0, 0);
         } else {
             def.bodyA = masses[j - 1];
             def.bodyB = masses[j];
@@ -145,8 +211,7 @@ StringRun runString(int n, double omegaEH, SpringFormulation formulation, int st
     const double e0 = totalEnergy();
     std::vector<double> excursion;
     excursion.reserve(steps);
-    double st = 0, se = 0, stt = 0, ste = 0;
-    double sm = 0, stm = 0;  // the modified energy's sums
+    DriftFit fit, shadowFit;
     for (int i = 0; i < steps; ++i) {
         if (!world.step().ok()) {
             run.finite = false;
@@ -155,7 +220,7 @@ StringRun runString(int n, double omegaEH, SpringFormulation formulation, int st
         }
         double worst = 0;
         for (int j = 0; j < n; ++j) {
-            const Vec3 rest(spacing * (j + 1), 0, 0);
+            const Vec3 rest(kSpacing * (j + 1), 0, 0);
             worst = std::max(worst, (world.position(masses[j]) - rest).norm());
         }
         excursion.push_back(worst);
@@ -166,23 +231,15 @@ StringRun runString(int n, double omegaEH, SpringFormulation formulation, int st
         if (energy) {
             const double t = h * (i + 1);
             const double e = totalEnergy();
-            st += t;
-            se += e;
-            stt += t * t;
-            ste += t * e;
-            const double modified = shadowEnergy();
-            sm += modified;
-            stm += t * modified;
+            fit.add(t, e);
+            shadowFit.add(t, shadowEnergy());
             run.maxEnergyRatio = std::max(run.maxEnergyRatio, e / e0);
         }
     }
     run.growth = growth(excursion);
     if (energy) {
-        const double count = steps;
-        const double slope = (count * ste - st * se) / (count * stt - st * st);
-        run.drift = slope * (h * steps) / (se / count);
-        const double shadowSlope = (count * stm - st * sm) / (count * stt - st * st);
-        run.shadowDrift = shadowSlope * (h * steps) / (sm / count);
+        run.drift = fit.drift(h * steps);
+        run.shadowDrift = shadowFit.drift(h * steps);
     }
     return run;
 }
@@ -224,37 +281,53 @@ CaseResult run(const CaseOptions& options) {
     result.tolerance("string_boundary_max", 1.05);
     result.check(lo >= 0.9 && lo <= 1.05, "explicit string boundary outside 0.9-1.05 of 1/omega_e");
 
-    // 3. energy drift below the boundary, over 1000 periods of the fundamental (100 when fast)
-    const double periods = options.fast ? 100 : 1000;
+    // 3. energy drift below the boundary, over 1000 periods of the fundamental
+    const double periods = 1000;  // cheap even for the full string
     const double omega1 = 2 * 100 * std::sin(kPi / (2.0 * (n + 1)));
+    const auto stepsFor = [&](double omegaEH, double p) {
+        return static_cast<int>(p * 2 * kPi / omega1 / (omegaEH / 100));
+    };
+    constexpr double kSmall = 0.3;  // amplitude of the linear regime (x ~0.3 mm)
     double worstDrift = 0;
     double worstShadowDrift = 0;
-    for (const double omegaEH : {0.5, 0.9}) {
-        const double h = omegaEH / 100;
-        const int steps = static_cast<int>(periods * 2 * kPi / omega1 / h);
-        const StringRun r = runString(n, omegaEH, SpringFormulation::Explicit, steps, true);
+    for (const double omegaEH : {0.5, 0.7, 0.9, 0.97}) {
+        const int steps = stepsFor(omegaEH, periods);
+        const StringRun r = runString(n, omegaEH, SpringFormulation::Explicit, steps, true, kSmall);
         result.table.push_back({{{"omega_e_h", omegaEH},
+                                 {"amplitude", kSmall},
                                  {"periods", periods},
-                                 {"steps", steps},
                                  {"energy_drift", r.drift},
                                  {"modified_energy_drift", r.shadowDrift},
                                  {"max_energy_ratio", r.maxEnergyRatio}}});
-        // Claimed at 0.5. At 0.9 (N = 32) E falls by half over 1000 periods, and the first-order
-        // modified energy rises by 85 %: reported only, an open finding (the geometrically
-        // nonlinear string moves energy between modes; near the limit the modified-energy
-        // series no longer describes the discrete flow).
-        if (omegaEH == 0.5) {
-            worstDrift = std::max(worstDrift, r.finite ? std::abs(r.drift) : INFINITY);
-            worstShadowDrift =
-                std::max(worstShadowDrift, r.finite ? std::abs(r.shadowDrift) : INFINITY);
-        }
+        worstDrift = std::max(worstDrift, r.finite ? std::abs(r.drift) : INFINITY);
+        worstShadowDrift =
+            std::max(worstShadowDrift, r.finite ? std::abs(r.shadowDrift) : INFINITY);
     }
     result.metric("explicit_modified_energy_drift_max", worstShadowDrift);
     result.check(worstShadowDrift < 1e-3,
-                 "explicit string's modified energy drifts by 0.1 % or more at omega_e h = 0.5");
+                 "explicit string's modified energy drifts by 0.1 % or more below the boundary");
     result.metric("explicit_energy_drift_max", worstDrift);
     result.tolerance("energy_drift_max", 1e-3);
     result.check(worstDrift < 1e-3, "explicit string energy drifts by 0.1 % or more");
+
+    // At 1 mm and omega_e h = 0.9 the scheme's step-size resonance: Tumble drifts as the
+    // independent semi-implicit Euler does. Compared over 100 periods, where the trajectories
+    // have not yet parted (over 1000 the resonant exchange is chaotic: -0.50 against -0.51).
+    const int resonantSteps = stepsFor(0.9, 100);
+    const StringRun resonant = runString(n, 0.9, SpringFormulation::Explicit, resonantSteps, true);
+    const double reference = referenceDrift(n, 0.9, 1, resonantSteps);
+    result.metric("resonant_energy_drift_100_periods", resonant.drift);
+    result.metric("resonant_reference_drift_100_periods", reference);
+    result.tolerance("resonant_drift_relative_difference_max", 1e-3);
+    result.check(std::abs(resonant.drift - reference) <= 1e-3 * std::abs(reference),
+                 "explicit string's drift at omega_e h = 0.9, 1 mm, differs from the "
+                 "independent semi-implicit Euler's");
+    if (!options.fast) {
+        const int steps = stepsFor(0.9, 1000);
+        result.metric("resonant_energy_drift_1000_periods",
+                      runString(n, 0.9, SpringFormulation::Explicit, steps, true).drift);
+        result.metric("resonant_reference_drift_1000_periods", referenceDrift(n, 0.9, 1, steps));
+    }
 
     // 4. implicit at omega_e h = 100
     const StringRun implicit =
