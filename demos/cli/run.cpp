@@ -153,6 +153,7 @@ std::string summaryJson(const Summary& s) {
                              {"lastSolverIterations", s.lastIterations}};
     if (s.failedBody >= 0)
         j["failedBody"] = s.failedBody;
+    j["warnings"] = s.warnings;
     return j.dump(2) + "\n";
 }
 
@@ -245,6 +246,12 @@ int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, s
         if (world.bodyType(b) == BodyType::Dynamic && !world.isAwake(b))
             ++s.bodiesAsleep;
     }
+    for (const Warning& w : world.warnings())
+        s.warnings.push_back(describe(w));
+    if (world.droppedWarnings() > 0)
+        s.warnings.push_back(std::to_string(world.droppedWarnings()) + " more warnings not kept");
+    for (const std::string& w : s.warnings)
+        err << "tumble: warning: " << w << "\n";
     if (s.status != "ok" && drawing)
         picture.addPanel(world, built.shapes, built.springs, built.joints, world.time());
     if (summaryFile)

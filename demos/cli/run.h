@@ -48,6 +48,8 @@ struct Summary {
     Real deepestPenetration = 0;  ///< max over the run of the solver's deepest penetration (m)
     Real lastResidual = 0;        ///< complementarity residual of the last step (m/s)
     int lastIterations = 0;
+    /// The world's warnings at the end (tumble/warnings.h), described; also printed to err.
+    std::vector<std::string> warnings;
 };
 
 Energy energyOf(const BuiltScene& built);

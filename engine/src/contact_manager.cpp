@@ -291,13 +291,17 @@ void ContactManager::collideActive(const ShapeStore& shapes, BodyStore& bodies,
         collide(shapeA.def.geometry, shapePose(shapeA, bodies), shapeB.def.geometry,
                 shapePose(shapeB, bodies), margin, next.manifold);
         carryImpulses(record.contact, next);
+        const bool was = record.contact.manifold.pointCount > 0;
+        const bool is = next.manifold.pointCount > 0;
         if (events != nullptr) {
-            const bool was = record.contact.manifold.pointCount > 0;
-            const bool is = next.manifold.pointCount > 0;
             if (!was && is)
                 events->contactBegin.push_back(touchEvent(next));
             else if (was && !is)
                 events->contactEnd.push_back(touchEvent(next));
+        }
+        if (warnings != nullptr && !was && is) {
+            warnings->checkMassRatio(next.bodyA, bodies.inertia[indexA].inverseMass, next.bodyB,
+                                     bodies.inertia[indexB].inverseMass);
         }
         record.contact = next;
 

@@ -24,6 +24,7 @@
 #include "step_context.h"
 #include "tumble/collision/broadphase.h"
 #include "tumble/contact.h"
+#include "warning_log.h"
 
 namespace tumble {
 
@@ -97,6 +98,9 @@ public:
     /// contact begins when its manifold gets its first points and ends when it loses its last
     /// ones or is destroyed with points (its pair separated, a shape or body was destroyed).
     EventLog* events = nullptr;
+    /// Where a contact that begins between dynamic bodies of very different masses is reported;
+    /// none when null.
+    WarningLog* warnings = nullptr;
     Real aabbMargin = 0.1;  ///< fat box growth (m)
 
 private:

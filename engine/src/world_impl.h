@@ -19,6 +19,7 @@
 #include "springs.h"
 #include "step_context.h"
 #include "tumble/world.h"
+#include "warning_log.h"
 
 namespace tumble {
 
@@ -49,6 +50,7 @@ struct World::Impl {
     ImpactTracker impacts;
     EventLog pendingEvents;  ///< appended to by the stages and the API
     EventLog events;         ///< published when a step returns
+    WarningLog warnings;
 
     StepContext context() const {
         return {settings.timeStep, 1 / settings.timeStep, settings.gravity};

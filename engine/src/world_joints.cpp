@@ -114,6 +114,11 @@ JointId World::createJoint(const JointDef& def) {
     checkJointDef(def, w.bodies);
     const JointId id = w.joints.add(makeJointRecord(def, w.bodies));
     setJointedPairsExcluded(w.joints, w.shapes, w.bodies, w.contacts, w.joints.indexOf(id), true);
+    if (!def.bodyB.isNull()) {
+        w.warnings.checkMassRatio(
+            def.bodyA, w.bodies.inertia[w.bodies.indexOf(def.bodyA)].inverseMass, def.bodyB,
+            w.bodies.inertia[w.bodies.indexOf(def.bodyB)].inverseMass, id);
+    }
     w.islands.push(w.bodies, w.contacts, w.bodies.indexOf(def.bodyA));
     if (!def.bodyB.isNull())
         w.islands.push(w.bodies, w.contacts, w.bodies.indexOf(def.bodyB));

@@ -114,4 +114,16 @@ Vec3 World::closestPoint(ShapeId id, const Vec3& point) const {
     return tumble::closestPoint(shape.def.geometry, shapePose(shape, impl_->bodies), point);
 }
 
+std::span<const Warning> World::warnings() const {
+    return impl_->warnings.items();
+}
+
+std::size_t World::droppedWarnings() const {
+    return impl_->warnings.dropped();
+}
+
+void World::clearWarnings() {
+    impl_->warnings.clear();
+}
+
 }  // namespace tumble

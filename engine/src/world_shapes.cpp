@@ -20,6 +20,25 @@ MassProperties compoundMass(const ShapeStore& shapes, std::uint32_t firstShape) 
     return combine(parts);
 }
 
+// Contacts leave up to the slop of penetration; on a shape less than twice the slop across that
+// is half its size or more (a 1 mm cube at the default 5 mm stays sunk on a corner). The size is
+// the smallest side of the shape's box in its own frame.
+void warnIfSmallerThanSlop(Real slop, BodyId body, const Shape& geometry, WarningLog& warnings) {
+    if (std::holds_alternative<HalfSpace>(geometry))
+        return;
+    const Aabb box = boundsOf(geometry, Transform{});
+    const Real size = (box.upper - box.lower).minCoeff();
+    const Real limit = 2 * slop;
+    if (!(size < limit))
+        return;
+    Warning warning;
+    warning.kind = Warning::Kind::SmallerThanSlop;
+    warning.bodyA = body;
+    warning.value = size;
+    warning.limit = limit;
+    warnings.raise(warning);
+}
+
 }  // namespace
 
 ShapeId World::createShape(BodyId body, const ShapeDef& def) {
@@ -41,6 +60,8 @@ ShapeId World::createShape(BodyId body, const ShapeDef& def) {
     }
 
     const ShapeId id = w.shapes.add(def, body);
+    if (info.type == BodyType::Dynamic)
+        warnIfSmallerThanSlop(w.settings.solver.slop, body, def.geometry, w.warnings);
     ShapeRecord& record = w.shapes.records[id.index];
     record.nextInBody = info.firstShape;
     info.firstShape = id.index;

@@ -48,6 +48,26 @@ void checkSpringDef(const SpringDef& def, const BodyStore& bodies) {
     }
 }
 
+// An explicit spring's step is stable only for omega h < 2 (omega^2 = k (1/m_A + 1/m_B), undamped;
+// damping lowers the limit further). Checked when the spring is made, at the current step.
+void warnIfUnstable(const BodyStore& bodies, Real h, SpringId id, const SpringDef& def,
+                    WarningLog& warnings) {
+    const Real inverseMassA = bodies.inertia[bodies.indexOf(def.bodyA)].inverseMass;
+    const Real inverseMassB =
+        def.bodyB.isNull() ? 0 : bodies.inertia[bodies.indexOf(def.bodyB)].inverseMass;
+    const Real omegaH = std::sqrt(def.stiffness * (inverseMassA + inverseMassB)) * h;
+    if (!(omegaH >= 2))
+        return;
+    Warning warning;
+    warning.kind = Warning::Kind::ExplicitSpringUnstable;
+    warning.bodyA = def.bodyA;
+    warning.bodyB = def.bodyB;
+    warning.spring = id;
+    warning.value = omegaH;
+    warning.limit = 2;
+    warnings.raise(warning);
+}
+
 }  // namespace
 
 Real axialStiffness(Real youngsModulus, Real area, Real restLength) {
@@ -64,6 +84,8 @@ SpringId World::createSpring(const SpringDef& def) {
     Impl& w = *impl_;
     checkSpringDef(def, w.bodies);
     const SpringId id = w.springs.add(def);
+    if (def.formulation == SpringFormulation::Explicit)
+        warnIfUnstable(w.bodies, w.settings.timeStep, id, def, w.warnings);
     w.islands.push(w.bodies, w.contacts, w.bodies.indexOf(def.bodyA));
     if (!def.bodyB.isNull())
         w.islands.push(w.bodies, w.contacts, w.bodies.indexOf(def.bodyB));

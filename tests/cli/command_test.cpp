@@ -40,6 +40,7 @@ TEST(Command, EveryBuiltInSceneRunsHeadless) {
     for (const std::string& name : names) {
         const Outcome o = tumbleRun({"run", name, "--time", "0.25", "--quiet"});
         EXPECT_EQ(o.status, 0) << name << ": " << o.err;
+        EXPECT_EQ(o.err.find("warning"), std::string::npos) << name << ": " << o.err;
     }
 }
 
@@ -54,6 +55,7 @@ TEST(Command, StackSummaryHasEveryFieldAndTheStartEnergyOfTheScene) {
                             "deepestPenetration", "lastSolverResidual", "bodiesAsleep", "bodies"})
         EXPECT_TRUE(s.contains(key)) << key;
     EXPECT_EQ(s["status"], "ok");
+    EXPECT_EQ(s["warnings"], nlohmann::json::array());
     EXPECT_EQ(s["steps"], 30);  // 0.5 s at h = 1/60
     EXPECT_NEAR(s["simulatedTime"].get<double>(), 0.5, 1e-9);
     EXPECT_EQ(s["bodies"], 11);
@@ -169,6 +171,21 @@ TEST(Command, AFailedStepExitsOneAndSaysSoInTheSummary) {
     const nlohmann::json s = nlohmann::json::parse(slurp(file));
     EXPECT_EQ(s["status"], "non-finite state");
     EXPECT_EQ(s["failedBody"], 0);
+    EXPECT_EQ(s["warnings"], nlohmann::json::array()) << "an overflow nothing foresaw";
+}
+
+TEST(Command, WarningsGoToStderrAndTheSummary) {
+    const fs::path dir = scratch("warned");
+    const fs::path scene = dir / "grain.json";
+    std::ofstream(scene) << R"({"duration": 0.1, "bodies": [{"shapes": [{"type": "box",
+        "halfExtents": [0.0005, 0.0005, 0.0005]}]}]})";
+    const fs::path file = dir / "s.json";
+    const Outcome o = tumbleRun({"run", scene.string(), "--quiet", "--summary", file.string()});
+    EXPECT_EQ(o.status, 0) << "a warning is not a failure";
+    EXPECT_NE(o.err.find("tumble: warning: a shape of body 0"), std::string::npos) << o.err;
+    const nlohmann::json s = nlohmann::json::parse(slurp(file));
+    ASSERT_EQ(s["warnings"].size(), 1u);
+    EXPECT_NE(s["warnings"][0].get<std::string>().find("contact slop"), std::string::npos);
 }
 
 struct BadFile {

@@ -1,11 +1,14 @@
 // Extreme but legal input: far from the origin, millimetre bodies, a mass ratio of 1e6, and an
 // explicit spring far past its stability limit. Each either works, asserted with physics, or is
-// pinned here as a known limit with what happens and why; the comments give measured numbers.
+// pinned here as a known limit with what happens and why, and the world warns of it
+// (World::warnings, tumble/warnings.h); the comments give measured numbers.
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "tumble/world.h"
 
@@ -132,6 +135,7 @@ struct Landing {
     Real up = 0;     ///< z of the cube's local z axis: 1 when it lies on a face
     Real spin = 0;   ///< angular speed times sqrt(s) (rad)
     Real depth = 0;  ///< deepest penetration of the last step / s
+    std::vector<Warning> warnings;
 };
 
 Landing dropTilted(Real s, bool scaleSettings) {
@@ -152,8 +156,11 @@ Landing dropTilted(Real s, bool scaleSettings) {
         addBox(world, Vec3(0, 0, 4 * half), Vec3::Constant(half), 1000, BodyType::Dynamic, tilt);
     for (int i = 0; i < 180; ++i)
         EXPECT_TRUE(world.step().ok());
-    return {world.position(box) / half, (world.orientation(box) * Vec3::UnitZ()).z(),
-            world.angularVelocity(box).norm() * t, world.solverStats().deepestPenetration / s};
+    return {world.position(box) / half,
+            (world.orientation(box) * Vec3::UnitZ()).z(),
+            world.angularVelocity(box).norm() * t,
+            world.solverStats().deepestPenetration / s,
+            {world.warnings().begin(), world.warnings().end()}};
 }
 
 // Works with settings scaled to the body: a 1 mm cube then tumbles, lands and settles exactly as
@@ -167,9 +174,11 @@ TEST(Extremes, MillimetreCubeTumblesLikeAMetreCubeWithScaledSettings) {
     EXPECT_LE((millimetre.position - metre.position).norm(), 1e-4);
     EXPECT_NEAR(millimetre.up, metre.up, 1e-6);
     EXPECT_LE(millimetre.spin, 1e-9);
+    EXPECT_TRUE(millimetre.warnings.empty()) << "the slop is scaled with the cube";
+    EXPECT_TRUE(metre.warnings.empty());
 }
 
-// Known limit, no message: with the default (metre-scale) settings a tumbling 1 mm cube does not
+// Known limit, warned of: with the default (metre-scale) settings a tumbling 1 mm cube does not
 // settle. The default slop (5 mm) is ten times its size, so penetration is never pushed out and
 // the step (1/60 s) is longer than the cube's own tipping time sqrt(L / g) = 10 ms: it stays
 // balanced on a corner sunk deeper than its half side (measured: tilted 52 deg, 0.63 mm deep).
@@ -179,6 +188,14 @@ TEST(Extremes, MillimetreCubeWithDefaultSettingsStaysSunkOnACorner) {
     EXPECT_LT(l.up, 0.9) << "not lying on a face";
     EXPECT_GT(l.depth, 0.5) << "sunk more than its half side";
     EXPECT_LT(l.depth, 5) << "but within the default slop";
+    ASSERT_EQ(l.warnings.size(), 1u) << "warned when its shape was made";
+    const Warning& w = l.warnings[0];
+    EXPECT_EQ(w.kind, Warning::Kind::SmallerThanSlop);
+    EXPECT_NEAR(w.value, 1e-3, 1e-15) << "its side";
+    EXPECT_EQ(w.limit, 2 * SolverSettings{}.slop);
+    EXPECT_NE(describe(w).find("0.001 m across, less than twice the contact slop (0.005 m)"),
+              std::string::npos)
+        << describe(w);
 }
 
 /// A heavy 1 m cube resting on a 1 kg one on the ground, `ratio` times heavier.
@@ -205,13 +222,15 @@ TEST(Extremes, HundredTimesHeavierBoxRestsOnALightOne) {
     EXPECT_NEAR(pile.world.position(pile.light).z(), 0.5, 0.01);
     EXPECT_NEAR(pile.world.position(pile.heavy).z() - pile.world.position(pile.light).z(), 1, 0.01);
     EXPECT_LT(pile.world.linearVelocity(pile.heavy).norm(), 1e-3);
+    EXPECT_TRUE(pile.world.warnings().empty()) << "100 is the largest ratio measured to hold";
 }
 
-// Known limit, no message: at a mass ratio of 1e6 the contact solver cannot hold the heavy box up
+// Known limit, warned of: at a mass ratio of 1e6 the contact solver cannot hold the heavy box up
 // (10 PGS sweeps move a 1 kg box's velocity, not a 1e6 kg one's). The light box is driven into
 // the ground (its centre 5 cm down after 5 steps, half its height after 13); the heavy box comes to
 // rest on the ground in its place, and the light box stays buried beneath it, creeping up at ~1e-5
-// m/s. Every step reports ok; the only signal is SolverStats::deepestPenetration, which reads 1 m.
+// m/s. Every step reports ok; the signals are the warning raised when the boxes' contact begins,
+// and SolverStats::deepestPenetration, which reads 1 m.
 // (Measured at other ratios, 10 sweeps: 1e2 holds; 1e3 sinks 0.88 m and then pushes both boxes up;
 // 1e4 launches them; 100 sweeps do not change the picture above 1e3.)
 TEST(Extremes, MillionTimesHeavierBoxDrivesTheLightOneIntoTheGround) {
@@ -226,15 +245,48 @@ TEST(Extremes, MillionTimesHeavierBoxDrivesTheLightOneIntoTheGround) {
     EXPECT_LT(sunk, 20) << "within a third of a second";
     EXPECT_LT(pile.world.position(pile.light).z(), 0) << "buried";
     EXPECT_NEAR(pile.world.position(pile.heavy).z(), 0.5, 1e-3) << "the heavy box is on the ground";
-    EXPECT_GT(pile.world.solverStats().deepestPenetration, 0.9) << "the one visible signal";
+    EXPECT_GT(pile.world.solverStats().deepestPenetration, 0.9);
     EXPECT_TRUE(pile.world.position(pile.light).allFinite());
+    ASSERT_EQ(pile.world.warnings().size(), 1u) << "once, however long they touch";
+    const Warning& w = pile.world.warnings()[0];
+    EXPECT_EQ(w.kind, Warning::Kind::MassRatio);
+    EXPECT_NEAR(w.value, 1e6, 1e-6);
+    EXPECT_EQ(w.bodyA, pile.heavy);
+    EXPECT_EQ(w.bodyB, pile.light);
+    EXPECT_TRUE(w.joint.isNull()) << "raised by a contact";
+    EXPECT_NE(describe(w).find("1e+06 times heavier"), std::string::npos) << describe(w);
+    pile.world.clearWarnings();
+    EXPECT_TRUE(pile.world.warnings().empty());
+}
+
+// A joint between a 1 kg and a 1000 kg body is warned of when it is made; a 10 kg one is not.
+TEST(Extremes, JointBetweenVeryDifferentMassesIsWarnedOf) {
+    World world(awakeWorld());
+    const BodyId light = addBox(world, Vec3(0, 0, 1), Vec3::Constant(0.5), 1);
+    const BodyId medium = addBox(world, Vec3(2, 0, 1), Vec3::Constant(0.5), 10);
+    const BodyId heavy = addBox(world, Vec3(-2, 0, 1), Vec3::Constant(0.5), 1000);
+    JointDef def;
+    def.bodyA = light;
+    def.bodyB = medium;
+    def.anchor = Vec3(1, 0, 1);
+    world.createJoint(def);
+    EXPECT_TRUE(world.warnings().empty());
+    def.bodyB = heavy;
+    def.anchor = Vec3(-1, 0, 1);
+    const JointId joint = world.createJoint(def);
+    ASSERT_EQ(world.warnings().size(), 1u);
+    const Warning& w = world.warnings()[0];
+    EXPECT_EQ(w.kind, Warning::Kind::MassRatio);
+    EXPECT_NEAR(w.value, 1000, 1e-9);
+    EXPECT_EQ(w.bodyA, heavy);
+    EXPECT_EQ(w.joint, joint);
 }
 
 // Reported: an explicit spring at omega h = 100 amplifies its oscillation by ~(omega h)^2 = 1e4 per
 // step. The step that overflows (measured: the 41st, from 1 cm of stretch, the body by then
 // 1e157 m away) is rolled back, names the body and the spring, and the world keeps the state
-// of the step before, bitwise. There is no earlier warning: until the overflow the state is
-// finite. Removing the spring lets the world step on.
+// of the step before, bitwise. The spring is warned of when it is made. Removing it lets the
+// world step on.
 TEST(Extremes, ExplicitSpringFarPastItsLimitIsNamedAndTheWorldKeepsItsLastState) {
     WorldDef def = awakeWorld();
     def.gravity = Vec3::Zero();
@@ -253,6 +305,10 @@ TEST(Extremes, ExplicitSpringFarPastItsLimitIsNamedAndTheWorldKeepsItsLastState)
     spring.stiffness = mass * (omegaH / h) * (omegaH / h);
     spring.formulation = SpringFormulation::Explicit;
     const SpringId culprit = world.createSpring(spring);
+    ASSERT_EQ(world.warnings().size(), 1u);
+    EXPECT_EQ(world.warnings()[0].kind, Warning::Kind::ExplicitSpringUnstable);
+    EXPECT_EQ(world.warnings()[0].spring, culprit);
+    EXPECT_NEAR(world.warnings()[0].value, omegaH, 1e-9);
 
     Vec3 lastPosition = world.position(body), lastVelocity = world.linearVelocity(body);
     StepStatus status;

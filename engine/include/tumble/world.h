@@ -30,6 +30,7 @@
 #include "tumble/shape.h"
 #include "tumble/solver/contact_solver.h"
 #include "tumble/spring.h"
+#include "tumble/warnings.h"
 
 namespace tumble {
 
@@ -309,6 +310,12 @@ public:
     const Profile& profile() const;   ///< stage timings of the last step
     /// Iterations used, largest complementarity residual and deepest penetration of the last step.
     const SolverStats& solverStats() const;
+    /// Legal input the engine is known to handle poorly, found so far (tumble/warnings.h): raised
+    /// when a shape, spring or joint is made and when a contact begins, once per cause, kept
+    /// until cleared. At most 64 are kept; droppedWarnings() counts the rest.
+    std::span<const Warning> warnings() const;
+    std::size_t droppedWarnings() const;
+    void clearWarnings();
     /// Refuses settings outside their documented ranges (checkSolverSettings).
     void setSolverSettings(const SolverSettings& settings);
 
