@@ -106,8 +106,27 @@ Vec3 requiredVec3(JsonObject& o, const std::string& key, const char* what) {
     return o.vec3(key, Vec3::Zero());
 }
 
-/// Axis, limits and motor of a hinge (angles in rad) or slider (m).
-void parseAxial(JsonObject& o, JointDef& def) {
+/// A hinge's (rad, N m) or slider's (m, N) PD/PID controller; see tumble/control.h.
+ControllerDef parseController(const Json& value, const std::string& path) {
+    JsonObject o(value, path);
+    ControllerDef c;
+    c.mode = o.choice("mode", "position", {"position", "velocity"}) == "position"
+                 ? ControlMode::Position
+                 : ControlMode::Velocity;
+    c.target = o.number("target", 0);
+    c.targetVelocity = o.number("targetVelocity", 0);
+    c.kp = o.positive("kp", 0, true);
+    c.ki = o.positive("ki", 0, true);
+    c.kd = o.positive("kd", 0, true);
+    if (o.has("maxForce"))
+        c.maxForce = o.positive("maxForce", 0);
+    o.finish();
+    return c;
+}
+
+/// Axis, limits, motor and controller of a hinge (angles in rad) or slider (m).
+void parseAxial(JsonObject& o, JointSpec& spec) {
+    JointDef& def = spec.def;
     const bool hinge = def.type == JointType::Hinge;
     def.axis = o.vec3("axis", def.axis);
     if (def.axis.norm() < 1e-9)
@@ -133,6 +152,8 @@ void parseAxial(JsonObject& o, JointDef& def) {
         def.maxMotorForce = motor.positive("maxForce", 0, true);
         motor.finish();
     }
+    if (const Json* controller = o.find("controller"))
+        spec.controller = parseController(*controller, o.pathOf("controller"));
 }
 
 JointSpec parseJoint(const Json& value, const std::string& path, const Scene& scene) {
@@ -156,7 +177,7 @@ JointSpec parseJoint(const Json& value, const std::string& path, const Scene& sc
         def.anchor = requiredVec3(o, "anchor", "where the bodies are joined (m, world)");
     }
     if (def.type == JointType::Hinge || def.type == JointType::Slider)
-        parseAxial(o, def);
+        parseAxial(o, j);
     def.breakForce = o.positive("breakForce", def.breakForce);
     def.breakTorque = o.positive("breakTorque", def.breakTorque);
     def.collideConnected = o.boolean("collideConnected", false);
@@ -245,6 +266,8 @@ void buildConnections(const Scene& scene, BuiltScene& built) {
             def.bodyA = idOf(spec.bodyA);
             def.bodyB = idOf(spec.bodyB);
             built.joints.push_back(world.createJoint(def));
+            if (spec.controller)
+                world.setJointController(built.joints.back(), *spec.controller);
         } catch (const InvalidArgument& e) {
             fail(scene.source, ": ", spec.path, ": ", e.what());
         }

@@ -54,8 +54,9 @@ struct SpringSpec {
 struct JointSpec {
     std::string path;  ///< "joints[0]"
     int bodyA = -1;
-    int bodyB = -1;  ///< -1: the world
-    JointDef def;    ///< bodies filled in by buildScene
+    int bodyB = -1;                           ///< -1: the world
+    JointDef def;                             ///< bodies filled in by buildScene
+    std::optional<ControllerDef> controller;  ///< hinges and sliders: a PD/PID controller
 };
 
 /// The scene's default outputs (each overridden by the command line).

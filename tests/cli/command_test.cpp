@@ -20,7 +20,7 @@ TEST(Command, ListsEveryBuiltInSceneOnItsOwnLine) {
     const Outcome o = tumbleRun({"scenes"});
     ASSERT_EQ(o.status, 0) << o.err;
     for (const char* name : {"bounce", "stack", "pyramid", "wall", "incline", "table", "cradle",
-                             "rain", "string", "net-capture", "pendulum", "arm"})
+                             "rain", "string", "net-capture", "pendulum", "arm", "pd-arm"})
         EXPECT_NE(("\n" + o.out).find(std::string("\n") + name + " "), std::string::npos) << name;
 }
 
@@ -36,7 +36,7 @@ TEST(Command, HelpAndVersionExitZeroAndUnknownOptionsTwo) {
 TEST(Command, EveryBuiltInSceneRunsHeadless) {
     const std::string dir = tumble::cli::sceneDirectory();
     const std::vector<std::string> names = tumble::cli::builtinScenes(dir);
-    ASSERT_GE(names.size(), 12u);
+    ASSERT_GE(names.size(), 13u);
     for (const std::string& name : names) {
         const Outcome o = tumbleRun({"run", name, "--time", "0.25", "--quiet"});
         EXPECT_EQ(o.status, 0) << name << ": " << o.err;
@@ -225,6 +225,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadFile{"joint.json", "joints[0].bodyB: no body with index 7 (the scene has 1 body)"},
         BadFile{"joint_missing_body.json", "joints[1].bodyB: no body named \"lid\""},
         BadFile{"hinge_zero_axis.json", "joints[0].axis: a hinge's axis must not be zero"},
+        BadFile{"controller_negative_gain.json", "joints[0].controller.kd"},
         BadFile{"joint_limits.json",
                 "joints[0].limits: lower = 1 > upper = -1: lower must be <= upper"},
         BadFile{"joint_static_bodies.json", "joints[0]: JointDef: neither body"},

@@ -135,6 +135,24 @@ TEST(Scenes, ArmMotorsDriveBothHingesToTheirUpperLimits) {
     EXPECT_LT(std::hypot(hand.vx, hand.vz), 1e-3);
 }
 
+TEST(Scenes, PidArmHoldsItsSetPointsAgainstGravity) {
+    // The arm of `arm` with PID controllers from the scene file instead of motors: shoulder to
+    // 0.8 rad, elbow to 1.2 rad. The integral takes up the gravity load, so the hand ends where
+    // the set-points put it, at rest (a PD alone would sag by torque / kp).
+    const fs::path dir = scratch("pd-arm");
+    const fs::path csv = dir / "t.csv";
+    ASSERT_EQ(tumbleRun({"run", "pd-arm", "--quiet", "--record", csv.string(), "--record-bodies",
+                         "hand", "--record-rate", "10"})
+                  .status,
+              0);
+    const Sample hand = readTrajectories(csv).at("hand").back();
+    const double x = 0.6 * std::cos(0.8) + 0.55 * std::cos(2.0);
+    const double z = 1 + 0.6 * std::sin(0.8) + 0.55 * std::sin(2.0);
+    EXPECT_NEAR(hand.x, x, 1e-4);
+    EXPECT_NEAR(hand.z, z, 1e-4);
+    EXPECT_LT(std::hypot(hand.vx, hand.vz), 1e-4);
+}
+
 TEST(Scenes, SliderRopeSpringAndDragDoWhatTheirDefinitionsSay) {
     const fs::path dir = scratch("connections");
     const fs::path csv = dir / "t.csv", summary = dir / "s.json";
