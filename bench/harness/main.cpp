@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -34,8 +35,11 @@ struct Row {
     std::string engine;
     std::string skipped;                         // why the engine did not run it, or empty
     std::vector<double> wallPerSimulatedSecond;  // one per run (s/s)
+    std::vector<double> cpuPerSimulatedSecond;   // this thread's CPU time, one per run (s/s)
     double median = 0;
-    double ratio = 0;  // this engine's median over Tumble's
+    double cpuMedian = 0;
+    double ratio = 0;     // this engine's median wall time over Tumble's
+    double cpuRatio = 0;  // and CPU time
     Metrics metrics{};
 };
 
@@ -46,17 +50,38 @@ struct Row {
 // consecutive windows of `duration` each: the figures are the settled pile's.
 constexpr double kPileLanding = 1;  // (s): the top layer falls about 2.5 m
 
-double timedSteps(SceneRun& sceneRun, double start, double duration, bool measure) {
+// This thread's CPU time (s): beside the wall time, because the machine may be shared.
+double cpuNow() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+struct Timing {
+    double wall;  // per simulated second (s/s)
+    double cpu;
+};
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+Timing timedSteps(SceneRun& sceneRun, double start, double duration, bool measure) {
     const int steps = static_cast<int>(duration / sceneRun.timeStep() + 0.5);
     double busy = 0;
+    double cpu = 0;
     for (int s = 0; s < steps; ++s) {
         const auto t0 = std::chrono::steady_clock::now();
+        const double c0 = cpuNow();
         sceneRun.step();
+        cpu += cpuNow() - c0;
         busy += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         if (measure)
             sceneRun.measure(start + (s + 1) * sceneRun.timeStep());
     }
-    return busy / duration;
+    return {busy / duration, cpu / duration};
 }
 
 Row run(const Peer& peer, const Scene& scene, const SceneSettings& settings, double duration,
@@ -80,15 +105,15 @@ Row run(const Peer& peer, const Scene& scene, const SceneSettings& settings, dou
                 time = kPileLanding;
             }
         }
-        row.wallPerSimulatedSecond.push_back(timedSteps(*sceneRun, time, duration, r == 0 || pile));
+        const Timing timing = timedSteps(*sceneRun, time, duration, r == 0 || pile);
+        row.wallPerSimulatedSecond.push_back(timing.wall);
+        row.cpuPerSimulatedSecond.push_back(timing.cpu);
         time += duration;
         if (r == 0 || pile)
             row.metrics = sceneRun->metrics();
     }
-    std::vector<double> sorted = row.wallPerSimulatedSecond;
-    std::sort(sorted.begin(), sorted.end());
-    const std::size_t n = sorted.size();
-    row.median = n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+    row.median = median(row.wallPerSimulatedSecond);
+    row.cpuMedian = median(row.cpuPerSimulatedSecond);
     return row;
 }
 
@@ -104,7 +129,7 @@ std::string markdownRow(const Row& r) {
     std::ostringstream out;
     out << "| " << r.scene << " | " << r.engine << " | ";
     if (!r.skipped.empty()) {
-        out << "skipped: " << r.skipped << " | | | | | | |";
+        out << "skipped: " << r.skipped << " | | | | | | | | |";
         return out.str();
     }
     const auto [lo, hi] =
@@ -113,7 +138,8 @@ std::string markdownRow(const Row& r) {
         << "] | " << number(1 / r.median, "%.3g") << " | " << number(r.metrics.topDrift) << " | "
         << number(r.metrics.deepest) << " | " << number(r.metrics.energyError) << " | "
         << (r.metrics.collapsedAt < 0 ? std::string("no") : number(r.metrics.collapsedAt, "%.2f"))
-        << " | " << number(r.ratio, "%.2f") << " |";
+        << " | " << number(r.ratio, "%.2f") << " | " << number(r.cpuMedian, "%.4g") << " | "
+        << number(r.cpuRatio, "%.2f") << " |";
     return out.str();
 }
 
@@ -128,9 +154,10 @@ std::string csvRow(const Row& r) {
             << number(*hi, "%.6g") << "," << number(1 / r.median, "%.6g") << ","
             << number(r.metrics.topDrift, "%.6g") << "," << number(r.metrics.deepest, "%.6g") << ","
             << number(r.metrics.energyError, "%.6g") << "," << number(r.metrics.collapsedAt, "%.6g")
-            << "," << number(r.ratio, "%.4g");
+            << "," << number(r.ratio, "%.4g") << "," << number(r.cpuMedian, "%.6g") << ","
+            << number(r.cpuRatio, "%.4g");
     } else {
-        out << ",,,,,,,,,,";
+        out << ",,,,,,,,,,,,";
     }
     return out.str();
 }
@@ -224,8 +251,10 @@ int main(int argc, char** argv) {
            << kPileLanding << " s of landing untimed, then the runs are consecutive windows\n";
     const std::string tableHead =
         "| scene | engine | wall s per sim s: median [min, max] | real-time factor | top drift "
-        "(m) | deepest penetration (m) | energy error | collapsed at (s) | time / Tumble |\n"
-        "|---|---|---|---|---|---|---|---|---|\n";
+        "(m) | deepest penetration (m) | energy error | collapsed at (s) | time / Tumble | CPU s "
+        "per sim s: median | CPU / "
+        "Tumble |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|\n";
     std::printf("%s\n%s", header.str().c_str(), tableHead.c_str());
     std::vector<Row> rows;
     for (const Scene& scene : scenes) {
@@ -233,11 +262,15 @@ int main(int argc, char** argv) {
             continue;
         const double seconds = duration > 0 ? duration : defaultDuration(scene, quick);
         double tumbleMedian = 0;
+        double tumbleCpu = 0;
         for (const Peer& peer : peers()) {
             Row row = run(peer, scene, settings, seconds, runs);
-            if (peer.name == "tumble")
+            if (peer.name == "tumble") {
                 tumbleMedian = row.median;
+                tumbleCpu = row.cpuMedian;
+            }
             row.ratio = row.median / tumbleMedian;
+            row.cpuRatio = row.cpuMedian / tumbleCpu;
             std::printf("%s\n", markdownRow(row).c_str());
             std::fflush(stdout);
             rows.push_back(std::move(row));
@@ -250,7 +283,8 @@ int main(int argc, char** argv) {
             md << markdownRow(r) << "\n";
         std::ofstream csv(outPrefix + ".csv");
         csv << "scene,engine,status,median_wall_s_per_sim_s,min,max,realtime_factor,top_drift_m,"
-               "deepest_penetration_m,energy_error,collapsed_at_s,time_over_tumble\n";
+               "deepest_penetration_m,energy_error,collapsed_at_s,time_over_tumble,"
+               "median_cpu_s_per_sim_s,cpu_over_tumble\n";
         for (const Row& r : rows)
             csv << csvRow(r) << "\n";
         std::printf("\nwrote %s.md and %s.csv\n", outPrefix.c_str(), outPrefix.c_str());
@@ -263,6 +297,7 @@ int main(int argc, char** argv) {
                               {"skipped", r.skipped},
                               {"wall_s_per_sim_s", r.wallPerSimulatedSecond},
                               {"median_wall_s_per_sim_s", r.median},
+                              {"cpu_s_per_sim_s", r.cpuPerSimulatedSecond},
                               {"top_drift_m", r.metrics.topDrift},
                               {"deepest_penetration_m", r.metrics.deepest},
                               {"energy_error", r.metrics.energyError},
