@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <ctime>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -219,7 +220,9 @@ int main(int argc, char** argv) {
                  "time a step against the body count instead (piles of 1k-10k bodies, nets of "
                  "100-10,000 nodes) and fit the exponent");
     app.add_flag("--scaling-50k", scaling.with50k, "add a pile of 50,000 bodies to --scaling");
-    app.add_option("--scaling-engine", scaling.engines, "--scaling: only these engines");
+    std::vector<std::string> engines;
+    app.add_option("--engine", engines,
+                   "run only these engines (tumble, bullet, ode, box2d); also for --scaling");
     CLI11_PARSE(app, argc, argv);
     if (!sweep.outDir.empty())
         return runSweep(sweep);
@@ -227,6 +230,7 @@ int main(int argc, char** argv) {
         std::printf("skipped: %s\n", skipped.c_str());
     if (scaling.enabled) {
         scaling.outPrefix = outPrefix;
+        scaling.engines = engines;
         return runScaling(scaling);
     }
 
@@ -261,9 +265,13 @@ int main(int argc, char** argv) {
         if (!selected(only, scene.name))
             continue;
         const double seconds = duration > 0 ? duration : defaultDuration(scene, quick);
-        double tumbleMedian = 0;
-        double tumbleCpu = 0;
+        // Without Tumble in the run the ratios are NaN, printed "-".
+        double tumbleMedian = std::numeric_limits<double>::quiet_NaN();
+        double tumbleCpu = tumbleMedian;
         for (const Peer& peer : peers()) {
+            if (!engines.empty() &&
+                std::find(engines.begin(), engines.end(), peer.name) == engines.end())
+                continue;
             Row row = run(peer, scene, settings, seconds, runs);
             if (peer.name == "tumble") {
                 tumbleMedian = row.median;
