@@ -5,7 +5,8 @@
 //   per step); contact surface layer 5 mm = Tumble's slop (the depth left alone);
 // - CFM 1e-5, ODE's double-precision default: nearly rigid constraints, as Tumble's;
 // - contacts: dContactApprox1 (the friction pyramid scaled by the normal force) with mu, bounce
-//   0, at most 4 points per pair (Bullet's and Tumble's manifold size).
+//   0, at most 4 points per pair (Bullet's and Tumble's manifold size);
+// - QuickStep's random constraint order, seeded afresh for every world (deterministic runs).
 // Nets: ODE's joints have no tension-only spring, so a net is point masses (bodies without
 // geoms) pulled by the harness's thread forces, applied before each step.
 
@@ -35,6 +36,9 @@ public:
     explicit OdeWorld(const SceneSettings& s)
         : h_(s.timeStep), friction_(s.friction), cubeMass_(s.boxMass) {
         initOde();
+        // QuickStep shuffles its constraints with ODE's global generator: reseeding it makes each
+        // world's run the same whatever ran before it in the process (every run is then equal).
+        dRandSetSeed(0);
         world_ = dWorldCreate();
         space_ = dHashSpaceCreate(nullptr);
         contacts_ = dJointGroupCreate(0);
