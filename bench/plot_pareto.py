@@ -13,7 +13,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-COLOURS = {"tumble": "tab:blue", "bullet": "tab:red"}
+COLOURS = {"tumble": "tab:blue", "bullet": "tab:red", "ode": "tab:green", "box2d": "tab:orange"}
 FLOOR = 1e-16  # (m): errors at or below round-off are drawn here on the log axis
 
 

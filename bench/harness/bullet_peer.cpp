@@ -1,11 +1,14 @@
 // Bullet 3 (Debian's libbullet-dev) behind the harness interface: btDiscreteDynamicsWorld with the
 // sequential-impulse solver, as the study used it; fixed steps of h (no sub-stepping), the
-// requested iterations, no deactivation (sleeping), restitution 0.
+// requested iterations, no deactivation (sleeping), restitution 0. Bullet has no spring elements
+// to match Tumble's implicit threads, so a net is point-mass spheres that collide with nothing
+// (collision mask 0) pulled by the harness's thread forces, applied before each step.
 
 #include <btBulletDynamicsCommon.h>
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "peer.h"
 
@@ -15,6 +18,9 @@ namespace {
 // Debian's Bullet is built in single precision: btScalar is float.
 btScalar narrow(Real x) {
     return static_cast<btScalar>(x);
+}
+btVector3 narrow(const Vec3& v) {
+    return btVector3(narrow(v.x()), narrow(v.y()), narrow(v.z()));
 }
 
 class BulletWorld final : public PeerWorld {
@@ -27,7 +33,7 @@ public:
           // Bullet multiplies the two friction coefficients: sqrt(mu) on each gives mu.
           friction_(std::sqrt(s.friction)),
           cube_(btVector3(0.5, 0.5, 0.5)) {
-        world_.setGravity(btVector3(0, 0, narrow(-9.81)));
+        world_.setGravity(narrow(s.gravity));
         world_.getSolverInfo().m_numIterations = s.iterations;
     }
     ~BulletWorld() override {
@@ -38,15 +44,42 @@ public:
             delete object;
         }
     }
-    void addGround() override { add(&plane_, 0, Vec3::Zero()); }
+    void addGround() override { add(&plane_, 0, Vec3::Zero(), Quat::Identity()); }
     int addCube(const Vec3& position) override {
-        cubes_.push_back(add(&cube_, mass_, position));
-        return static_cast<int>(cubes_.size()) - 1;
+        return index(add(&cube_, mass_, position, Quat::Identity()));
     }
+    void addStaticBox(const Vec3& center, const Vec3& halfExtents) override {
+        add(own(std::make_unique<btBoxShape>(narrow(halfExtents))), 0, center, Quat::Identity());
+    }
+    int addBody(const BodySpec& b) override {
+        btCollisionShape* shape = nullptr;
+        if (b.kind == ShapeKind::Box)
+            shape = own(std::make_unique<btBoxShape>(narrow(b.halfExtents)));
+        else if (b.kind == ShapeKind::Sphere)
+            shape = own(std::make_unique<btSphereShape>(narrow(b.radius)));
+        else
+            shape =
+                own(std::make_unique<btCapsuleShapeZ>(narrow(b.radius), narrow(2 * b.halfLength)));
+        return index(add(shape, b.mass, b.position, b.orientation));
+    }
+    int addPointMass(const Vec3& position, const Vec3& velocity, Real mass, Real radius) override {
+        btCollisionShape* shape = own(std::make_unique<btSphereShape>(narrow(radius)));
+        btRigidBody* body = add(shape, mass, position, Quat::Identity(), 0);
+        body->setLinearVelocity(narrow(velocity));
+        return index(body);
+    }
+    void applyForce(int body, const Vec3& force) override {
+        bodies_[body]->applyCentralForce(narrow(force));
+    }
+    // stepSimulation clears the applied forces after the step.
     void step() override { world_.stepSimulation(static_cast<btScalar>(h_), 0); }
-    Vec3 position(int cube) const override {
-        const btVector3& p = cubes_[cube]->getCenterOfMassPosition();
+    Vec3 position(int body) const override {
+        const btVector3& p = bodies_[body]->getCenterOfMassPosition();
         return Vec3(p.x(), p.y(), p.z());
+    }
+    Vec3 velocity(int body) const override {
+        const btVector3& v = bodies_[body]->getLinearVelocity();
+        return Vec3(v.x(), v.y(), v.z());
     }
     Real deepestPenetration() const override {
         Real deepest = 0;
@@ -60,13 +93,24 @@ public:
     }
 
 private:
-    btRigidBody* add(btCollisionShape* shape, Real mass, const Vec3& position) {
+    btCollisionShape* own(std::unique_ptr<btCollisionShape> shape) {
+        shapes_.push_back(std::move(shape));
+        return shapes_.back().get();
+    }
+    int index(btRigidBody* body) {
+        bodies_.push_back(body);
+        return static_cast<int>(bodies_.size()) - 1;
+    }
+    btRigidBody* add(btCollisionShape* shape, Real mass, const Vec3& position,
+                     const Quat& orientation, int mask = -1) {
         btVector3 inertia(0, 0, 0);
         if (mass > 0)
             shape->calculateLocalInertia(static_cast<btScalar>(mass), inertia);
         btTransform pose;
         pose.setIdentity();
-        pose.setOrigin(btVector3(narrow(position.x()), narrow(position.y()), narrow(position.z())));
+        pose.setOrigin(narrow(position));
+        pose.setRotation(btQuaternion(narrow(orientation.x()), narrow(orientation.y()),
+                                      narrow(orientation.z()), narrow(orientation.w())));
         auto* motion = new btDefaultMotionState(pose);
         btRigidBody::btRigidBodyConstructionInfo info(static_cast<btScalar>(mass), motion, shape,
                                                       inertia);
@@ -74,7 +118,11 @@ private:
         info.m_restitution = 0;
         auto* body = new btRigidBody(info);
         body->setActivationState(DISABLE_DEACTIVATION);
-        world_.addRigidBody(body);
+        if (mask == -1) {
+            world_.addRigidBody(body);
+        } else {
+            world_.addRigidBody(body, btBroadphaseProxy::DefaultFilter, mask);
+        }
         return body;
     }
 
@@ -88,7 +136,8 @@ private:
     Real friction_;
     btStaticPlaneShape plane_{btVector3(0, 0, 1), 0};
     btBoxShape cube_;
-    std::vector<btRigidBody*> cubes_;
+    std::vector<std::unique_ptr<btCollisionShape>> shapes_;  // outlive the bodies (destroyed after)
+    std::vector<btRigidBody*> bodies_;
 };
 
 }  // namespace

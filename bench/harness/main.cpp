@@ -1,20 +1,28 @@
-// tumble-bench: the stack and pyramid scenes in Tumble and in each peer engine found at configure
-// time, with matched settings, side by side: wall time per simulated second (median of several
-// runs, with the spread), real-time factor, and each scene's error metric (top drift, deepest
-// penetration, whether it collapsed). Prints a Markdown table; --json writes the same figures.
-// --sweep DIR instead sweeps h and iterations for the speed-versus-error fronts (sweep.h).
+// tumble-bench: the harness's scenes -- stacks, pyramids, nets, piles -- in Tumble and in each peer
+// engine found at configure time, with matched settings, side by side: wall time per simulated
+// second (median of several runs, with the spread), real-time factor, and each scene's error
+// metric (top drift, deepest penetration, energy error, whether and when it collapsed). Prints a
+// Markdown table and writes it as Markdown and CSV; --json writes the runs too.
+// --sweep DIR instead sweeps h and iterations for the speed-versus-error fronts (sweep.h);
+// --scaling times a step against the body count (scaling.h).
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <fstream>
+#include <limits>
+#include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "peer.h"
+#include "scaling.h"
 #include "scene.h"
 #include "sweep.h"
 
@@ -23,44 +31,37 @@ namespace {
 using namespace tumble;
 using namespace tumble::bench;
 
-struct Outcome {
+struct Row {
+    std::string scene;
+    std::string engine;
+    std::string skipped;                         // why the engine did not run it, or empty
     std::vector<double> wallPerSimulatedSecond;  // one per run (s/s)
-    double topDrift = 0;                         // largest horizontal offset of the top cube (m)
-    double deepest = 0;                          // deepest penetration over the run (m)
-    double collapsedAt = -1;                     // when any cube first moved 0.5 m (s), or -1
+    std::vector<double> cpuPerSimulatedSecond;   // this thread's CPU time, one per run (s/s)
+    double median = 0;
+    double cpuMedian = 0;
+    double ratio = 0;     // this engine's median wall time over Tumble's
+    double cpuRatio = 0;  // and CPU time
+    Metrics metrics{};
 };
 
-Outcome run(const Peer& peer, const Scene& scene, const SceneSettings& settings, double duration,
-            int runs) {
-    Outcome outcome;
-    const int steps = static_cast<int>(duration / settings.timeStep + 0.5);
-    for (int r = 0; r < runs; ++r) {
-        auto world = peer.create(settings);
-        const std::vector<Vec3> start = build(*world, scene);
-        const int top = static_cast<int>(start.size()) - 1;
-        double busy = 0;
-        for (int s = 0; s < steps; ++s) {
-            const auto t0 = std::chrono::steady_clock::now();
-            world->step();
-            busy += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-            if (r > 0)
-                continue;  // the metrics are the same every run; measure them once
-            outcome.deepest = std::max(outcome.deepest, world->deepestPenetration());
-            const Vec3 offset = world->position(top) - start[top];
-            outcome.topDrift = std::max(outcome.topDrift, offset.head<2>().norm());
-            if (outcome.collapsedAt < 0) {
-                for (int i = 0; i <= top; ++i) {
-                    if ((world->position(i) - start[i]).norm() > 0.5) {
-                        outcome.collapsedAt = (s + 1) * settings.timeStep;
-                        break;
-                    }
-                }
-            }
-        }
-        outcome.wallPerSimulatedSecond.push_back(busy / duration);
-    }
-    return outcome;
+// Times the scene `runs` times: from scratch each time, timing the steps only; the metrics come
+// from the first run (the engines are deterministic: every run is the same). A pile is built
+// once instead -- rebuilding thousands of bodies five times would take minutes -- and stepped
+// untimed through its landing (kPileLanding, measured for the error), then timed over `runs`
+// consecutive windows of `duration` each: the figures are the settled pile's.
+constexpr double kPileLanding = 1;  // (s): the top layer falls about 2.5 m
+
+// This thread's CPU time (s): beside the wall time, because the machine may be shared.
+double cpuNow() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
+
+struct Timing {
+    double wall;  // per simulated second (s/s)
+    double cpu;
+};
 
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
@@ -68,19 +69,139 @@ double median(std::vector<double> v) {
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+Timing timedSteps(SceneRun& sceneRun, double start, double duration, bool measure) {
+    const int steps = static_cast<int>(duration / sceneRun.timeStep() + 0.5);
+    double busy = 0;
+    double cpu = 0;
+    for (int s = 0; s < steps; ++s) {
+        const auto t0 = std::chrono::steady_clock::now();
+        const double c0 = cpuNow();
+        sceneRun.step();
+        cpu += cpuNow() - c0;
+        busy += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        if (measure)
+            sceneRun.measure(start + (s + 1) * sceneRun.timeStep());
+    }
+    return {busy / duration, cpu / duration};
+}
+
+Row run(const Peer& peer, const Scene& scene, const SceneSettings& settings, double duration,
+        int runs) {
+    Row row;
+    row.scene = scene.name;
+    row.engine = peer.name;
+    const bool pile = scene.kind == SceneKind::Pile;
+    std::unique_ptr<SceneRun> sceneRun;
+    double time = 0;
+    for (int r = 0; r < runs; ++r) {
+        if (!pile || r == 0) {
+            sceneRun = std::make_unique<SceneRun>(peer, scene, settings);
+            if (!sceneRun->skipped().empty()) {
+                row.skipped = sceneRun->skipped();
+                return row;
+            }
+            time = 0;
+            if (pile) {
+                timedSteps(*sceneRun, 0, kPileLanding, true);
+                time = kPileLanding;
+            }
+        }
+        const Timing timing = timedSteps(*sceneRun, time, duration, r == 0 || pile);
+        row.wallPerSimulatedSecond.push_back(timing.wall);
+        row.cpuPerSimulatedSecond.push_back(timing.cpu);
+        time += duration;
+        if (r == 0 || pile)
+            row.metrics = sceneRun->metrics();
+    }
+    row.median = median(row.wallPerSimulatedSecond);
+    row.cpuMedian = median(row.cpuPerSimulatedSecond);
+    return row;
+}
+
+std::string number(double x, const char* format = "%.3g") {
+    if (std::isnan(x))
+        return "-";
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, format, x);
+    return buffer;
+}
+
+std::string markdownRow(const Row& r) {
+    std::ostringstream out;
+    out << "| " << r.scene << " | " << r.engine << " | ";
+    if (!r.skipped.empty()) {
+        out << "skipped: " << r.skipped << " | | | | | | | | |";
+        return out.str();
+    }
+    const auto [lo, hi] =
+        std::minmax_element(r.wallPerSimulatedSecond.begin(), r.wallPerSimulatedSecond.end());
+    out << number(r.median, "%.4g") << " [" << number(*lo, "%.4g") << ", " << number(*hi, "%.4g")
+        << "] | " << number(1 / r.median, "%.3g") << " | " << number(r.metrics.topDrift) << " | "
+        << number(r.metrics.deepest) << " | " << number(r.metrics.energyError) << " | "
+        << (r.metrics.collapsedAt < 0 ? std::string("no") : number(r.metrics.collapsedAt, "%.2f"))
+        << " | " << number(r.ratio, "%.2f") << " | " << number(r.cpuMedian, "%.4g") << " | "
+        << number(r.cpuRatio, "%.2f") << " |";
+    return out.str();
+}
+
+std::string csvRow(const Row& r) {
+    std::ostringstream out;
+    out << r.scene << "," << r.engine << ","
+        << (r.skipped.empty() ? "ran" : "skipped: " + r.skipped);
+    if (r.skipped.empty()) {
+        const auto [lo, hi] =
+            std::minmax_element(r.wallPerSimulatedSecond.begin(), r.wallPerSimulatedSecond.end());
+        out << "," << number(r.median, "%.6g") << "," << number(*lo, "%.6g") << ","
+            << number(*hi, "%.6g") << "," << number(1 / r.median, "%.6g") << ","
+            << number(r.metrics.topDrift, "%.6g") << "," << number(r.metrics.deepest, "%.6g") << ","
+            << number(r.metrics.energyError, "%.6g") << "," << number(r.metrics.collapsedAt, "%.6g")
+            << "," << number(r.ratio, "%.4g") << "," << number(r.cpuMedian, "%.6g") << ","
+            << number(r.cpuRatio, "%.4g");
+    } else {
+        out << ",,,,,,,,,,,,";
+    }
+    return out.str();
+}
+
+bool selected(const std::vector<std::string>& filter, const std::string& name) {
+    if (filter.empty())
+        return true;
+    return std::any_of(filter.begin(), filter.end(), [&](const std::string& f) {
+        return name == f || name.rfind(f + "-", 0) == 0;  // "pile" selects pile-1000, ...
+    });
+}
+
+// Default simulated time per run: long enough for a stack to fall if it will, a pile to land
+// and a net to open and spring back, short enough for the whole run to take a few minutes.
+double defaultDuration(const Scene& scene, bool quick) {
+    if (quick)
+        return scene.kind == SceneKind::Pile ? 0.25 : 1;
+    if (scene.kind == SceneKind::Pile)
+        return 0.5;  // per timed window, after the landing (see run)
+    return scene.kind == SceneKind::Stack ? 5 : 2;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"tumble-bench: stacks and pyramids in Tumble and its peers, side by side"};
+    CLI::App app{"tumble-bench: stacks, pyramids, nets and piles in Tumble and its peers"};
     int runs = 5;
-    double duration = 5;
+    double duration = 0;
+    bool quick = false;
     std::string jsonPath;
+    std::string outPrefix = "tumble-bench";
     std::vector<std::string> only;
     app.add_option("--runs", runs, "timed runs per scene and engine (median and spread)")
         ->check(CLI::PositiveNumber);
-    app.add_option("--time", duration, "simulated seconds per run")->check(CLI::PositiveNumber);
-    app.add_option("--json", jsonPath, "also write the figures as JSON to this file");
-    app.add_option("--scene", only, "run only these scenes (e.g. stack-20 pyramid-20)");
+    app.add_option("--time", duration,
+                   "simulated seconds per run (default: 5 for stacks, 2 for pyramids and nets; "
+                   "piles: per timed window after 1 s of landing, default 0.5)")
+        ->check(CLI::PositiveNumber);
+    app.add_flag("--quick", quick, "the smaller scenes only, 1 s per run (a smoke test)");
+    app.add_option("--scene", only,
+                   "run only these scenes, by name or kind (stack-20, pyramid, net, pile-1000)");
+    app.add_option("--out", outPrefix, "write the table to PREFIX.md and PREFIX.csv ('' : don't)");
+    app.add_option("--json", jsonPath, "also write every run's figures as JSON to this file");
     SweepOptions sweep;
     app.add_option("--sweep", sweep.outDir,
                    "speed versus error instead: sweep h and iterations, write the Pareto fronts "
@@ -94,53 +215,103 @@ int main(int argc, char** argv) {
     app.add_option("--sweep-scene", sweep.scenes, "sweep only these: stack, pyramid, chain")
         ->check(CLI::IsMember({"stack", "pyramid", "chain"}));
     app.add_flag("!--no-plot", sweep.plot, "do not run the plotting script after the sweep");
+    ScalingOptions scaling;
+    app.add_flag("--scaling", scaling.enabled,
+                 "time a step against the body count instead (piles of 1k-10k bodies, nets of "
+                 "100-10,000 nodes) and fit the exponent");
+    app.add_flag("--scaling-50k", scaling.with50k, "add a pile of 50,000 bodies to --scaling");
+    std::vector<std::string> engines;
+    app.add_option("--engine", engines,
+                   "run only these engines (tumble, bullet, ode, box2d); also for --scaling");
     CLI11_PARSE(app, argc, argv);
     if (!sweep.outDir.empty())
         return runSweep(sweep);
-
-    const std::vector<Scene> scenes = {{"stack-5", 5, false},    {"stack-10", 10, false},
-                                       {"stack-20", 20, false},  {"stack-40", 40, false},
-                                       {"pyramid-20", 20, true}, {"pyramid-40", 40, true}};
-    const SceneSettings settings;
     for (const std::string& skipped : skippedPeers())
         std::printf("skipped: %s\n", skipped.c_str());
-    std::printf(
-        "h = 1/%.0f s, %d iterations, mu = %.2f, unit cubes of %.0f kg, %.1f s per run, "
-        "%d runs\n\n",
-        1 / settings.timeStep, settings.iterations, settings.friction, settings.boxMass, duration,
-        runs);
-    std::printf(
-        "| scene | engine | wall s per sim s: median [min, max] | real-time factor | "
-        "top drift (m) | deepest penetration (m) | collapsed at (s) | time / Tumble |\n");
-    std::printf("|---|---|---|---|---|---|---|---|\n");
-    nlohmann::json report = nlohmann::json::array();
+    if (scaling.enabled) {
+        scaling.outPrefix = outPrefix;
+        scaling.engines = engines;
+        return runScaling(scaling);
+    }
+
+    std::vector<Scene> scenes = {
+        {"stack-5", 5, SceneKind::Stack},       {"stack-10", 10, SceneKind::Stack},
+        {"stack-20", 20, SceneKind::Stack},     {"stack-40", 40, SceneKind::Stack},
+        {"pyramid-20", 20, SceneKind::Pyramid}, {"pyramid-40", 40, SceneKind::Pyramid}};
+    for (const int n : {10, 20, 40}) {
+        scenes.push_back({"net-" + std::to_string(n) + "-soft", n, SceneKind::Net, 0.5});
+        scenes.push_back({"net-" + std::to_string(n) + "-stiff", n, SceneKind::Net, 20});
+    }
+    scenes.push_back({"pile-1000", 1000, SceneKind::Pile});
+    scenes.push_back({"pile-4000", 4000, SceneKind::Pile});
+    if (quick && only.empty())
+        only = {"stack-5", "stack-20", "pyramid-20", "net-10", "net-20", "pile-1000"};
+
+    const SceneSettings settings;
+    std::ostringstream header;
+    header << "h = 1/" << number(1 / settings.timeStep, "%.0f") << " s, " << settings.iterations
+           << " iterations, mu = " << number(settings.friction, "%.2f") << ", restitution 0, "
+           << runs << " runs per scene and engine (median [min, max]); piles: built once, "
+           << kPileLanding << " s of landing untimed, then the runs are consecutive windows\n";
+    const std::string tableHead =
+        "| scene | engine | wall s per sim s: median [min, max] | real-time factor | top drift "
+        "(m) | deepest penetration (m) | energy error | collapsed at (s) | time / Tumble | CPU s "
+        "per sim s: median | CPU / "
+        "Tumble |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|\n";
+    std::printf("%s\n%s", header.str().c_str(), tableHead.c_str());
+    std::vector<Row> rows;
     for (const Scene& scene : scenes) {
-        if (!only.empty() && std::find(only.begin(), only.end(), scene.name) == only.end())
+        if (!selected(only, scene.name))
             continue;
-        double tumbleMedian = 0;
+        const double seconds = duration > 0 ? duration : defaultDuration(scene, quick);
+        // Without Tumble in the run the ratios are NaN, printed "-".
+        double tumbleMedian = std::numeric_limits<double>::quiet_NaN();
+        double tumbleCpu = tumbleMedian;
         for (const Peer& peer : peers()) {
-            const Outcome o = run(peer, scene, settings, duration, runs);
-            const double m = median(o.wallPerSimulatedSecond);
-            if (peer.name == "tumble")
-                tumbleMedian = m;
-            const auto [lo, hi] = std::minmax_element(o.wallPerSimulatedSecond.begin(),
-                                                      o.wallPerSimulatedSecond.end());
-            std::printf("| %s | %s | %.4f [%.4f, %.4f] | %.1f | %.3g | %.3g | %s | %.2f |\n",
-                        scene.name.c_str(), peer.name.c_str(), m, *lo, *hi, 1 / m, o.topDrift,
-                        o.deepest, o.collapsedAt < 0 ? "no" : std::to_string(o.collapsedAt).c_str(),
-                        m / tumbleMedian);
+            if (!engines.empty() &&
+                std::find(engines.begin(), engines.end(), peer.name) == engines.end())
+                continue;
+            Row row = run(peer, scene, settings, seconds, runs);
+            if (peer.name == "tumble") {
+                tumbleMedian = row.median;
+                tumbleCpu = row.cpuMedian;
+            }
+            row.ratio = row.median / tumbleMedian;
+            row.cpuRatio = row.cpuMedian / tumbleCpu;
+            std::printf("%s\n", markdownRow(row).c_str());
             std::fflush(stdout);
-            report.push_back({{"scene", scene.name},
-                              {"engine", peer.name},
-                              {"wall_s_per_sim_s", o.wallPerSimulatedSecond},
-                              {"median_wall_s_per_sim_s", m},
-                              {"realtime_factor", 1 / m},
-                              {"top_drift_m", o.topDrift},
-                              {"deepest_penetration_m", o.deepest},
-                              {"collapsed_at_s", o.collapsedAt}});
+            rows.push_back(std::move(row));
         }
     }
-    if (!jsonPath.empty())
+    if (!outPrefix.empty()) {
+        std::ofstream md(outPrefix + ".md");
+        md << "# tumble-bench\n\n" << header.str() << "\n" << tableHead;
+        for (const Row& r : rows)
+            md << markdownRow(r) << "\n";
+        std::ofstream csv(outPrefix + ".csv");
+        csv << "scene,engine,status,median_wall_s_per_sim_s,min,max,realtime_factor,top_drift_m,"
+               "deepest_penetration_m,energy_error,collapsed_at_s,time_over_tumble,"
+               "median_cpu_s_per_sim_s,cpu_over_tumble\n";
+        for (const Row& r : rows)
+            csv << csvRow(r) << "\n";
+        std::printf("\nwrote %s.md and %s.csv\n", outPrefix.c_str(), outPrefix.c_str());
+    }
+    if (!jsonPath.empty()) {
+        nlohmann::json report = nlohmann::json::array();
+        for (const Row& r : rows) {
+            report.push_back({{"scene", r.scene},
+                              {"engine", r.engine},
+                              {"skipped", r.skipped},
+                              {"wall_s_per_sim_s", r.wallPerSimulatedSecond},
+                              {"median_wall_s_per_sim_s", r.median},
+                              {"cpu_s_per_sim_s", r.cpuPerSimulatedSecond},
+                              {"top_drift_m", r.metrics.topDrift},
+                              {"deepest_penetration_m", r.metrics.deepest},
+                              {"energy_error", r.metrics.energyError},
+                              {"collapsed_at_s", r.metrics.collapsedAt}});
+        }
         std::ofstream(jsonPath) << report.dump(2) << "\n";
+    }
     return 0;
 }

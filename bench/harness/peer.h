@@ -1,10 +1,12 @@
 #pragma once
-/// One engine behind the scene harness: the few calls a stack or pyramid scene needs, so the same
-/// scene runs in Tumble and in each peer with matched settings (h, iterations, friction,
-/// restitution, sizes, masses). Each peer lives in its own file and is compiled only when its
-/// library was found.
+/// One engine behind the scene harness: the few calls the stack, pyramid, pile and net scenes
+/// need, so the same scene runs in Tumble and in each peer with matched settings (h, iterations,
+/// friction, restitution, sizes, masses). Each peer lives in its own file and is compiled only when
+/// its library was found. A peer that cannot build a scene says so (see `planar`, `addBody`,
+/// `addPointMass`), and the harness reports the scene as skipped for it.
 
 #include <memory>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -18,6 +20,51 @@ struct SceneSettings {
     int iterations = 10;       ///< velocity iterations
     Real friction = 0.5;       ///< Coulomb mu of every pair, after the engine's combine rule
     Real boxMass = 1;          ///< (kg), unit cubes
+    Vec3 gravity = Vec3(0, 0, -9.81);  ///< (m/s^2); the nets fly in free space (zero)
+};
+
+/// The pile's shapes. No cylinders: Debian's ODE is built without libccd and has no
+/// cylinder-cylinder or cylinder-capsule test, so a pile with cylinders would not be the same
+/// scene in every engine.
+enum class ShapeKind { Box, Sphere, Capsule };
+
+/// A dynamic body of the pile: its shape in its own frame (capsules along local z), its mass and
+/// its pose. Each engine computes the inertia of its shape from the mass.
+struct BodySpec {
+    ShapeKind kind = ShapeKind::Box;
+    Vec3 halfExtents = Vec3::Constant(0.5);  ///< boxes (m)
+    Real radius = 0.5;                       ///< spheres and capsules (m)
+    Real halfLength = 0.5;                   ///< capsules: half the segment (m)
+    Real mass = 1;                           ///< (kg)
+    Vec3 position = Vec3::Zero();
+    Quat orientation = Quat::Identity();
+};
+
+/// Volume of the body's shape (m^3), for the engines that take a density.
+inline Real volume(const BodySpec& b) {
+    constexpr Real pi = std::numbers::pi;
+    switch (b.kind) {
+        case ShapeKind::Box:
+            return 8 * b.halfExtents.prod();
+        case ShapeKind::Sphere:
+            return 4.0 / 3 * pi * b.radius * b.radius * b.radius;
+        case ShapeKind::Capsule:
+        default:
+            return pi * b.radius * b.radius * (2 * b.halfLength + 4.0 / 3 * b.radius);
+    }
+}
+
+/// A square net of n x n point masses joined to their 4 neighbours by undamped, tension-only
+/// threads of stiffness k and rest length `mesh`, thrown open in free space: node (i, j) at
+/// ((i - (n-1)/2) mesh, (j - (n-1)/2) mesh, 0) moving away from the centre at a speed
+/// proportional to its distance, `spreadSpeed` at the corners (lumped.h's NetDef).
+struct NetSpec {
+    int n = 10;
+    Real mesh = 0.05;         ///< (m)
+    Real nodeMass = 0.01;     ///< (kg)
+    Real stiffness = 9;       ///< k per thread (N/m)
+    Real spreadSpeed = 0.5;   ///< (m/s)
+    Real nodeRadius = 0.005;  ///< inertia only: the nodes do not collide (m)
 };
 
 class PeerWorld {
@@ -25,10 +72,28 @@ public:
     virtual ~PeerWorld() = default;
     /// The plane z = 0, static.
     virtual void addGround() = 0;
-    /// A unit cube (1 m edges) at `position`, at rest; returns its index (0, 1, ...).
+    /// A unit cube (1 m edges) of SceneSettings::boxMass at `position`, at rest; returns its index
+    /// among the dynamic bodies (0, 1, ...).
     virtual int addCube(const Vec3& position) = 0;
+    /// A static box (the pile's container walls). Planar engines ignore it.
+    virtual void addStaticBox(const Vec3& /*center*/, const Vec3& /*halfExtents*/) {}
+    /// A dynamic body; its index, or -1 when the engine cannot (planar engines).
+    virtual int addBody(const BodySpec& /*body*/) { return -1; }
+    /// The whole net with the engine's own springs; the first node's index (row-major), or -1
+    /// when the engine has none (the harness then applies the threads' forces to point masses).
+    virtual int addNet(const NetSpec& /*net*/) { return -1; }
+    /// A point mass that collides with nothing; its index, or -1 when the engine cannot.
+    virtual int addPointMass(const Vec3& /*position*/, const Vec3& /*velocity*/, Real /*mass*/,
+                             Real /*radius*/) {
+        return -1;
+    }
+    /// A force on a point mass for the next step only (N).
+    virtual void applyForce(int /*body*/, const Vec3& /*force*/) {}
+    /// Does the engine simulate the x-z plane only (Box2D)? Planar scenes only, then.
+    virtual bool planar() const { return false; }
     virtual void step() = 0;
-    virtual Vec3 position(int cube) const = 0;
+    virtual Vec3 position(int body) const = 0;
+    virtual Vec3 velocity(int body) const = 0;
     /// Deepest penetration among the current contacts (m), >= 0.
     virtual Real deepestPenetration() const = 0;
 };
@@ -42,12 +107,24 @@ std::unique_ptr<PeerWorld> createTumble(const SceneSettings& settings);
 #ifdef TUMBLE_HAVE_BULLET
 std::unique_ptr<PeerWorld> createBullet(const SceneSettings& settings);
 #endif
+#ifdef TUMBLE_HAVE_ODE
+std::unique_ptr<PeerWorld> createOde(const SceneSettings& settings);
+#endif
+#ifdef TUMBLE_HAVE_BOX2D
+std::unique_ptr<PeerWorld> createBox2d(const SceneSettings& settings);
+#endif
 
 /// The engines compiled in, Tumble first.
 inline std::vector<Peer> peers() {
     std::vector<Peer> list{{"tumble", &createTumble}};
 #ifdef TUMBLE_HAVE_BULLET
     list.push_back({"bullet", &createBullet});
+#endif
+#ifdef TUMBLE_HAVE_ODE
+    list.push_back({"ode", &createOde});
+#endif
+#ifdef TUMBLE_HAVE_BOX2D
+    list.push_back({"box2d", &createBox2d});
 #endif
     return list;
 }
@@ -57,6 +134,12 @@ inline std::vector<std::string> skippedPeers() {
     std::vector<std::string> skipped;
 #ifndef TUMBLE_HAVE_BULLET
     skipped.push_back("bullet (libbullet-dev not found at configure time)");
+#endif
+#ifndef TUMBLE_HAVE_ODE
+    skipped.push_back("ode (libode-dev, pkg-config ode, not found at configure time)");
+#endif
+#ifndef TUMBLE_HAVE_BOX2D
+    skipped.push_back("box2d (libbox2d-dev 2.4, CMake package box2d, not found at configure time)");
 #endif
     return skipped;
 }

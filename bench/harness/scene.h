@@ -1,6 +1,9 @@
 #pragma once
-/// The harness's scenes, built the same way in every engine: a column of unit cubes or a pyramid.
+/// The harness's scenes, built the same way in every engine: a column of unit cubes, a pyramid,
+/// a pile of mixed bodies in a container, and a net thrown open in free space. SceneRun builds
+/// one in one engine, steps it and measures the scene's error as it goes.
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -8,30 +11,75 @@
 
 namespace tumble::bench {
 
+enum class SceneKind { Stack, Pyramid, Pile, Net };
+
 struct Scene {
     std::string name;
-    int size;  ///< cubes in the column, or the pyramid's base
-    bool pyramid;
+    /// Cubes in the column, the pyramid's base, bodies in the pile, or nodes along the net's side.
+    int size = 1;
+    SceneKind kind = SceneKind::Stack;
+    /// Nets: the threads' stiffness as omega_e h, omega_e = sqrt(k / node mass).
+    Real omegaH = 0.5;
+
+    bool planar() const { return kind == SceneKind::Stack || kind == SceneKind::Pyramid; }
 };
 
-/// Builds the scene in `world`; returns the cubes' start positions (the top cube last).
-inline std::vector<Vec3> build(PeerWorld& world, const Scene& scene) {
-    world.addGround();
-    std::vector<Vec3> start;
-    if (!scene.pyramid) {
-        for (int i = 0; i < scene.size; ++i)
-            start.push_back(Vec3(0, 0, 0.5 + i));
-    } else {
-        constexpr double kPitch = 1.05;  // 5 cm between neighbours, as in the `pyramid` case
-        for (int row = 0; row < scene.size; ++row) {
-            const int n = scene.size - row;
-            for (int i = 0; i < n; ++i)
-                start.push_back(Vec3((i - 0.5 * (n - 1)) * kPitch, 0, 0.5 + row));
-        }
-    }
-    for (const Vec3& p : start)
-        world.addCube(p);
-    return start;
-}
+/// Builds a stack or pyramid in `world`; returns the cubes' start positions (the top cube last).
+std::vector<Vec3> build(PeerWorld& world, const Scene& scene);
+
+/// The settings a scene runs with: `base`, with zero gravity for the nets (they fly in space).
+SceneSettings settingsFor(const Scene& scene, const SceneSettings& base);
+
+/// The figures of one run; a metric that does not apply to the scene is NaN.
+struct Metrics {
+    double topDrift;     ///< stacks, pyramids: largest horizontal offset of the top cube (m)
+    double deepest;      ///< deepest penetration over the run (m); NaN for nets
+    double energyError;  ///< nets: largest |E - E0| / E0 over the run (E: kinetic + thread)
+    /// Stacks, pyramids: when a cube first moved 0.5 m; piles: when a body first left the
+    /// container or went non-finite; nets: when a node went non-finite or the energy grew
+    /// tenfold (blew up). -1: never (s).
+    double collapsedAt = -1;
+};
+
+/// One scene in one engine, built, ready to step.
+class SceneRun {
+public:
+    SceneRun(const Peer& peer, const Scene& scene, const SceneSettings& base);
+    ~SceneRun();
+    SceneRun(const SceneRun&) = delete;
+    SceneRun& operator=(const SceneRun&) = delete;
+
+    /// Why the engine cannot run this scene; empty when it can (then the rest may be called).
+    const std::string& skipped() const { return skipped_; }
+    /// One step: the harness's thread forces (point-mass nets) and the engine's step. Timed.
+    void step();
+    /// Updates the metrics after a step, at simulated time `time` (s). Not timed.
+    void measure(double time);
+    const Metrics& metrics() const { return metrics_; }
+    Real timeStep() const { return settings_.timeStep; }
+
+private:
+    struct Thread {
+        int a;
+        int b;
+    };
+    void buildPile();
+    void buildNet();
+    double netEnergy() const;
+
+    Scene scene_;
+    SceneSettings settings_;
+    std::unique_ptr<PeerWorld> world_;
+    std::string skipped_;
+    std::vector<Vec3> start_;
+    Metrics metrics_;
+    Real containerHalf_ = 0;  // piles: half the container's inside width (m)
+    // Nets.
+    NetSpec net_;
+    bool harnessThreads_ = false;  // the engine has no springs: this applies the threads
+    std::vector<Thread> threads_;
+    std::vector<Vec3> force_;  // per node, reused every step
+    double energy0_ = 0;
+};
 
 }  // namespace tumble::bench

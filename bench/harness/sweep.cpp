@@ -254,8 +254,11 @@ int runSweep(const SweepOptions& options) {
         std::fflush(stdout);
     };
     const std::vector<std::pair<std::string, Scene>> cubeScenes = {
-        {"stack", {"stack-" + std::to_string(options.stackSize), options.stackSize, false}},
-        {"pyramid", {"pyramid-" + std::to_string(options.pyramidBase), options.pyramidBase, true}}};
+        {"stack",
+         {"stack-" + std::to_string(options.stackSize), options.stackSize, SceneKind::Stack}},
+        {"pyramid",
+         {"pyramid-" + std::to_string(options.pyramidBase), options.pyramidBase,
+          SceneKind::Pyramid}}};
     for (const auto& [key, scene] : cubeScenes) {
         if (!wanted(options, key))
             continue;

@@ -1,8 +1,10 @@
-// Tumble behind the harness interface, with the settings of the validation cases.
+// Tumble behind the harness interface, with the settings of the validation cases. Nets use
+// Tumble's own generator (lumped.h) with implicit, tension-only threads.
 
 #include <algorithm>
 
 #include "peer.h"
+#include "tumble/lumped.h"
 #include "tumble/tumble.h"
 
 namespace tumble::bench {
@@ -10,41 +12,74 @@ namespace {
 
 class TumbleWorld final : public PeerWorld {
 public:
-    explicit TumbleWorld(const SceneSettings& s) : world_(worldDef(s)), friction_(s.friction) {
-        density_ = s.boxMass;  // a unit cube: density = mass
-    }
+    explicit TumbleWorld(const SceneSettings& s)
+        : world_(worldDef(s)), friction_(s.friction), cubeMass_(s.boxMass) {}
     void addGround() override {
         const BodyId ground = world_.createBody(BodyDef{.type = BodyType::Static});
-        world_.createShape(ground, ShapeDef{.geometry = HalfSpace{}, .material = material()});
+        world_.createShape(ground, ShapeDef{.geometry = HalfSpace{}, .material = material(1)});
     }
     int addCube(const Vec3& position) override {
-        const BodyId cube = world_.createBody(BodyDef{.position = position});
-        world_.createShape(cube,
-                           ShapeDef{.geometry = Box{Vec3::Constant(0.5)}, .material = material()});
-        cubes_.push_back(cube);
-        return static_cast<int>(cubes_.size()) - 1;
+        // A unit cube: density = mass.
+        return add(BodyDef{.position = position}, Box{Vec3::Constant(0.5)}, cubeMass_);
+    }
+    void addStaticBox(const Vec3& center, const Vec3& halfExtents) override {
+        const BodyId wall =
+            world_.createBody(BodyDef{.type = BodyType::Static, .position = center});
+        world_.createShape(wall, ShapeDef{.geometry = Box{halfExtents}, .material = material(1)});
+    }
+    int addBody(const BodySpec& b) override {
+        Shape shape = Box{b.halfExtents};
+        if (b.kind == ShapeKind::Sphere)
+            shape = Sphere{b.radius};
+        else if (b.kind == ShapeKind::Capsule)
+            shape = Capsule{b.radius, b.halfLength};
+        return add(BodyDef{.position = b.position, .orientation = b.orientation}, shape,
+                   b.mass / volume(b));
+    }
+    int addNet(const NetSpec& spec) override {
+        NetDef net;
+        net.rows = spec.n;
+        net.columns = spec.n;
+        net.meshSize = spec.mesh;
+        net.node.mass = spec.nodeMass;
+        net.node.radius = spec.nodeRadius;
+        net.thread.axialRigidity = spec.stiffness * spec.mesh;  // k = E A / L0
+        net.thread.tensionOnly = true;
+        net.thread.formulation = SpringFormulation::Implicit;
+        net.spreadSpeed = spec.spreadSpeed;
+        const Lumped lumped = createNet(world_, net);
+        const int first = static_cast<int>(bodies_.size());
+        bodies_.insert(bodies_.end(), lumped.nodes.begin(), lumped.nodes.end());
+        return first;
     }
     void step() override { world_.step(); }
-    Vec3 position(int cube) const override { return world_.position(cubes_[cube]); }
+    Vec3 position(int body) const override { return world_.position(bodies_[body]); }
+    Vec3 velocity(int body) const override { return world_.linearVelocity(bodies_[body]); }
     Real deepestPenetration() const override { return world_.solverStats().deepestPenetration; }
 
 private:
     static WorldDef worldDef(const SceneSettings& s) {
-        WorldDef def{.gravity = Vec3(0, 0, -9.81), .timeStep = s.timeStep};
+        WorldDef def{.gravity = s.gravity, .timeStep = s.timeStep};
         def.solver.iterations = s.iterations;
         // As many split-impulse sweeps as velocity sweeps, as Bullet runs its split-impulse pass.
         def.solver.relaxIterations = s.iterations;
         def.enableSleep = false;  // every engine simulates every body
         return def;
     }
+    int add(const BodyDef& def, const Shape& shape, Real density) {
+        const BodyId body = world_.createBody(def);
+        world_.createShape(body, ShapeDef{.geometry = shape, .material = material(density)});
+        bodies_.push_back(body);
+        return static_cast<int>(bodies_.size()) - 1;
+    }
     // Tumble mixes friction as sqrt(muA muB): mu on both gives mu.
-    Material material() const {
-        return Material{.friction = friction_, .restitution = 0, .density = density_};
+    Material material(Real density) const {
+        return Material{.friction = friction_, .restitution = 0, .density = density};
     }
     World world_;
     Real friction_;
-    Real density_ = 1;
-    std::vector<BodyId> cubes_;
+    Real cubeMass_;
+    std::vector<BodyId> bodies_;
 };
 
 }  // namespace
