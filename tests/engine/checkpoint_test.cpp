@@ -41,6 +41,7 @@ std::vector<std::uint64_t> stateBits(const World& world, const std::vector<BodyI
         add(world.linearVelocity(b));
         add(world.angularVelocity(b));
         bits.push_back(world.isAwake(b) ? 1 : 0);
+        add(world.interpolatedTransform(b, 0.25).position);  // the previous pose counts too
     }
     return bits;
 }
@@ -48,6 +49,7 @@ std::vector<std::uint64_t> stateBits(const World& world, const std::vector<BodyI
 struct Scene {
     World world;
     std::vector<BodyId> bodies;
+    std::vector<SpringId> springs;
 };
 
 BodyId addBody(Scene& scene, const Vec3& position, BodyType type = BodyType::Dynamic) {
@@ -93,6 +95,10 @@ Scene pileScene() {
     s.world.createShape(
         ball, ShapeDef{.geometry = Sphere{0.4}, .material = {.restitution = 0.5, .density = 4000}});
     s.world.setDrag(ball, Drag{.linear = 0.1, .quadratic = 0.05});
+    // Far right: a box that lands at 1.4 s and falls asleep after the checkpoint (1.67 s), so
+    // the sleep timers it carries decide the step it stops on.
+    const BodyId late = addBody(s, Vec3(8, 0, 10));
+    s.world.createShape(late, ShapeDef{.geometry = Box{Vec3::Constant(0.25)}});
     return s;
 }
 
@@ -184,6 +190,7 @@ Scene netScene() {
     net.spreadSpeed = 1;
     const Lumped lumped = createNet(s.world, net);
     s.bodies.insert(s.bodies.end(), lumped.nodes.begin(), lumped.nodes.end());
+    s.springs = lumped.threads;
     const BodyId ball = addBody(s, Vec3(0.05, -0.03, 1.9));
     s.world.createShape(ball, ShapeDef{.geometry = Sphere{0.15}, .material = {.density = 300}});
     s.world.setLinearVelocity(ball, Vec3(0, 0, -2));
@@ -229,6 +236,8 @@ void expectBitwiseResume(Scene& original, int warmup, int further) {
     ASSERT_EQ(resumed.stepCount(), original.world.stepCount());
     ASSERT_EQ(std::bit_cast<std::uint64_t>(resumed.time()),
               std::bit_cast<std::uint64_t>(original.world.time()));
+    ASSERT_EQ(stateBits(original.world, original.bodies), stateBits(resumed, original.bodies))
+        << "differs before any step";
     for (int i = 0; i < further; ++i) {
         ASSERT_TRUE(original.world.step().ok());
         ASSERT_TRUE(resumed.step().ok());
@@ -243,19 +252,32 @@ TEST(Checkpoint, PileWithSleepingBodiesAndActiveContactsResumesBitwise) {
     run(s.world, 100);  // the left stack is asleep, the pyramid still settling
     EXPECT_GE(sleepingCount(s.world, s.bodies), 4);
     EXPECT_GE(touchingAwakeContacts(s.world), 5);
+    const BodyId late = s.bodies.back();
+    ASSERT_TRUE(s.world.isAwake(late));
     expectBitwiseResume(s, 0, 150);  // the capsule and the ball land on the pyramid
-    EXPECT_LT(s.world.position(s.bodies.back()).z(), 8);
+    EXPECT_FALSE(s.world.isAwake(late));
+    EXPECT_LT(s.world.position(s.bodies[s.bodies.size() - 2]).z(), 8);  // the ball came down
 }
 
 TEST(Checkpoint, JointsWithMotorLimitsControllerAndBreakingResumeBitwise) {
     Scene s = jointScene();
     expectBitwiseResume(s, 45, 200);
+    int broken = 0;
+    for (std::uint32_t i = 0; i < 8; ++i)  // the scene's joints: slots 0 to 6, generation 1
+        broken += s.world.isValid(JointId{i, 1}) && s.world.jointState(JointId{i, 1}).broken;
+    EXPECT_EQ(broken, 1);  // the last link's hinge broke after the checkpoint
 }
 
 TEST(Checkpoint, NetCatchingABallResumesBitwise) {
     Scene s = netScene();
     run(s.world, 12);  // the ball reaches the net during the resumed run
     expectBitwiseResume(s, 0, 90);
+    // The threads' active set changed during the resumed run: some went slack, some taut.
+    int slack = 0;
+    for (const SpringId thread : s.springs)
+        slack += s.world.springState(thread).slack;
+    EXPECT_GT(slack, 0);
+    EXPECT_LT(slack, static_cast<int>(s.springs.size()));
 }
 
 TEST(Checkpoint, FileRoundTripReplacesTheTemporary) {
