@@ -302,25 +302,117 @@ struct CheckpointAccess {
     /// Sizes that must agree for the stores to be usable; a payload that passed the checksum
     /// but breaks one was not written by this code.
     static void check(const checkpoint_io::Reader& r, const World::Impl& w) {
+        constexpr std::uint32_t kNone = 0xFFFFFFFF;
+        // Every index the stores follow must land inside its array: a crafted payload that
+        // passed the checksum is refused here rather than read out of bounds by a step.
+        const auto all = [&](const auto& values, std::size_t size, bool noneAllowed,
+                             const char* what) {
+            for (const auto v : values) {
+                if (!(v < size || (noneAllowed && v == kNone)))
+                    r.corrupt(what, " ", v, " out of range (", size, ")");
+            }
+        };
+        const auto one = [&](std::uint32_t v, std::size_t size, bool noneAllowed,
+                             const char* what) {
+            all(std::array<std::uint32_t, 1>{v}, size, noneAllowed, what);
+        };
         const BodyStore& b = w.bodies;
         const std::size_t n = b.motion.size();
         if (b.previousMotion.size() != n || b.inertia.size() != n || b.forces.size() != n ||
             b.info.size() != n || b.awake.size() > n)
             r.corrupt("body arrays of different sizes");
-        for (const BodyInfo& info : b.info) {
-            if (info.slot >= b.slots_.size())
-                r.corrupt("a body's slot is out of range");
+        all(b.awake, n, false, "awake body");
+        for (std::size_t k = 0; k < b.awake.size(); ++k) {
+            if (b.info[b.awake[k]].awakeIndex != k)
+                r.corrupt("awake list and awake indices disagree");
         }
+        const std::size_t shapeSlots = w.shapes.records.size();
+        const ContactManager& c = w.contacts;
+        const std::size_t edges = 2 * c.pool_.size();
+        for (std::uint32_t i = 0; i < n; ++i) {
+            const BodyInfo& info = b.info[i];
+            one(info.slot, b.slots_.size(), false, "body slot");
+            if (b.slots_[info.slot].dense != i || !b.slots_[info.slot].alive)
+                r.corrupt("body slot ", info.slot, " does not point back at body ", i);
+            one(info.firstShape, shapeSlots, true, "first shape");
+            one(info.firstContact, edges, true, "first contact");
+            one(info.awakeIndex, b.awake.size(), true, "awake index");
+        }
+        all(b.freeSlots_, b.slots_.size(), false, "free body slot");
+        const SweepAndPrune& sap = c.broadphase_;
+        const std::size_t proxies = sap.proxies_.size();
+        for (const ShapeRecord& shape : w.shapes.records) {
+            one(shape.nextInBody, shapeSlots, true, "next shape");
+            if (shape.alive && (!b.isValid(shape.body) || shape.proxy >= proxies))
+                r.corrupt("a shape's body or proxy is invalid");
+        }
+        all(w.shapes.freeSlots_, shapeSlots, false, "free shape slot");
+        for (const ContactManager::Record& record : c.pool_) {
+            all(record.next, edges, true, "contact edge");
+            all(record.previous, edges, true, "contact edge");
+            const Contact& contact = record.contact;
+            if (record.alive &&
+                (!b.isValid(contact.bodyA) || !b.isValid(contact.bodyB) ||
+                 contact.shapeA.index >= shapeSlots || contact.shapeB.index >= shapeSlots))
+                r.corrupt("a contact's bodies or shapes are invalid");
+        }
+        for (const auto* list : {&c.freeSlots_, &c.dead_, &c.active_, &c.activated_})
+            all(*list, c.pool_.size(), false, "contact slot");
+        all(c.proxyToShape_, shapeSlots, true, "proxy's shape");
+        all(c.wakeRequests_, n, false, "body to wake");
+        all(c.placedProxies_, proxies, false, "placed proxy");
+        for (const SweepAndPrune::Proxy& proxy : sap.proxies_) {
+            for (int axis = 0; axis < 3; ++axis) {
+                if (proxy.isIndexed)
+                    all(proxy.endpoint[axis], sap.endpoints_[axis].size(), false, "endpoint");
+            }
+        }
+        for (const auto& list : sap.endpoints_) {
+            for (const SweepAndPrune::Endpoint& e : list)
+                one(e.proxy(), proxies, false, "endpoint's proxy");
+        }
+        for (const SweepAndPrune::Move& m : sap.moves_)
+            one(m.proxy, proxies, false, "moved proxy");
+        for (const auto* list : {&sap.pending_, &sap.removing_, &sap.freeIds_, &sap.large_})
+            all(*list, proxies, false, "proxy");
+        for (const auto* list :
+             {&sap.excluded_, &sap.candidates_, &sap.pairs_, &sap.added_, &sap.removed_}) {
+            for (const ProxyPair& pair : *list) {
+                one(pair.first, proxies, false, "paired proxy");
+                one(pair.second, proxies, false, "paired proxy");
+            }
+        }
+        if (sap.axis_ < 0 || sap.axis_ > 2)
+            r.corrupt("sweep axis ", sap.axis_);
         const SpringStore& s = w.springs;
         if (s.state.size() != s.defs.size() || s.previousState.size() != s.defs.size() ||
             s.slotOf_.size() != s.defs.size())
             r.corrupt("spring arrays of different sizes");
+        all(s.slotOf_, s.slots_.size(), false, "spring slot");
+        all(s.freeSlots_, s.slots_.size(), false, "free spring slot");
+        for (const SpringDef& def : s.defs) {
+            if (!b.isValid(def.bodyA) || !(def.bodyB.isNull() || b.isValid(def.bodyB)))
+                r.corrupt("a spring's bodies are invalid");
+        }
         const JointStore& j = w.joints;
         if (j.state.size() != j.records.size() || j.previousState.size() != j.records.size() ||
             j.slotOf_.size() != j.records.size())
             r.corrupt("joint arrays of different sizes");
+        all(j.slotOf_, j.slots_.size(), false, "joint slot");
+        all(j.freeSlots_, j.slots_.size(), false, "free joint slot");
+        for (const JointRecord& record : j.records) {
+            const JointDef& def = record.def;
+            if (!b.isValid(def.bodyA) || !(def.bodyB.isNull() || b.isValid(def.bodyB)))
+                r.corrupt("a joint's bodies are invalid");
+        }
         if (w.drag.drags.size() != w.drag.bodies.size())
             r.corrupt("drag arrays of different sizes");
+        all(w.drag.denseOfSlot_, w.drag.drags.size(), true, "drag index");
+        for (const BodyId body : w.drag.bodies) {
+            if (!b.isValid(body))
+                r.corrupt("a drag's body is invalid");
+        }
+        all(w.impacts.opened_, w.impacts.bySlot_.size(), false, "impact slot");
         if (!(w.settings.timeStep > 0))
             r.corrupt("time step ", w.settings.timeStep);
     }

@@ -259,6 +259,23 @@ TEST(Checkpoint, PileWithSleepingBodiesAndActiveContactsResumesBitwise) {
     EXPECT_LT(s.world.position(s.bodies[s.bodies.size() - 2]).z(), 8);  // the ball came down
 }
 
+// Destroyed bodies and shapes leave free id slots, dead contacts and broadphase removals that
+// the next step completes; a checkpoint taken right after the destruction carries them.
+TEST(Checkpoint, PendingRemovalsAndFreeSlotsResumeBitwise) {
+    Scene s = pileScene();
+    run(s.world, 60);
+    const std::size_t top = 4 + 1 + 15;  // ground, the left stack, the pyramid's last box
+    const BodyId removed = s.bodies[top];
+    s.world.destroyBody(removed);
+    s.bodies.erase(s.bodies.begin() + static_cast<long>(top));
+    s.world.destroyShape(ShapeId{0, 1});             // the ground's half-space: the pile falls
+    const BodyId extra = addBody(s, Vec3(3, 3, 1));  // takes the freed slot, generation 2
+    s.world.createShape(extra, ShapeDef{.geometry = Sphere{0.3}});
+    EXPECT_EQ(extra.index, removed.index);
+    EXPECT_EQ(extra.generation, removed.generation + 1);
+    expectBitwiseResume(s, 0, 60);
+}
+
 TEST(Checkpoint, JointsWithMotorLimitsControllerAndBreakingResumeBitwise) {
     Scene s = jointScene();
     expectBitwiseResume(s, 45, 200);
