@@ -387,6 +387,32 @@ TEST_F(CheckpointRefusal, ConsistentHeaderOverABadPayload) {
     EXPECT_EQ(readU64(good, 16), good.size() - 32);
 }
 
+// Payload bytes changed behind a recomputed checksum (what the checksum cannot catch): the
+// load either refuses with the file's name or succeeds, and never reads out of bounds.
+TEST_F(CheckpointRefusal, CraftedPayloadsAreRefusedOrLoadedNeverCrash) {
+    std::uint64_t seed = 12345;
+    int refused = 0;
+    constexpr int kTrials = 400;
+    for (int trial = 0; trial < kTrials; ++trial) {
+        std::vector<std::uint8_t> crafted = good;
+        for (int flips = 0; flips < 3; ++flips) {
+            seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+            const std::size_t at = 32 + (seed >> 33) % (crafted.size() - 32);
+            crafted[at] ^= static_cast<std::uint8_t>(1u << ((seed >> 20) % 8));
+        }
+        writeU64(crafted, 24,
+                 checkpoint_io::fnv1a(std::span<const std::uint8_t>(crafted).subspan(32)));
+        World world;
+        const std::string message =
+            refusal([&] { restoreCheckpoint(world, crafted, "crafted.ckpt"); });
+        if (!message.empty()) {
+            ++refused;
+            EXPECT_TRUE(contains(message, "checkpoint crafted.ckpt: corrupt payload at byte"));
+        }
+    }
+    EXPECT_GT(refused, 0);
+}
+
 TEST(Checkpoint, MissingOrUnwritableFileIsRefused) {
     World world;
     const std::filesystem::path missing = "/nonexistent-dir/none.ckpt";
