@@ -1,6 +1,7 @@
 #include "command.h"
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <iostream>
 
 #include "run.h"
@@ -83,6 +84,14 @@ int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ost
                     "comma-separated")
         ->delimiter(',');
     run->add_flag("--quiet,-q", options.quiet, "Print nothing but errors");
+    double checkpointEvery = 0;
+    run->add_option("--checkpoint", options.checkpoint,
+                    "Save the world's state to FILE at the start, every --checkpoint-every "
+                    "and at the end (written to FILE.tmp, then renamed)");
+    run->add_option("--checkpoint-every", checkpointEvery,
+                    "Simulated time T (s) between checkpoints; needs --checkpoint");
+    run->add_option("--resume", options.resume,
+                    "Continue from a checkpoint FILE of this scene to --time (or the duration)");
 
     std::vector<const char*> argv;
     for (const std::string& a : args)
@@ -123,6 +132,13 @@ int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ost
                                    ? selectBodies(loaded, recordBodies, "--record-bodies")
                                    : defaults.recordBodies;
         options.terminal = terminal;
+        if (run->count("--checkpoint-every") != 0) {
+            if (options.checkpoint.empty())
+                fail("--checkpoint-every needs --checkpoint FILE");
+            if (!(checkpointEvery > 0) || !std::isfinite(checkpointEvery))
+                fail("--checkpoint-every = ", checkpointEvery, " must be > 0 (s)");
+            options.checkpointEvery = checkpointEvery;
+        }
         if (recordRate < 0 && run->count("--record-rate") != 0)
             fail("--record-rate = ", recordRate, " must be >= 0");
         return runScene(loaded, options, out, err);

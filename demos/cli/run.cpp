@@ -14,6 +14,7 @@
 #include <ostream>
 
 #include "svg.h"
+#include "tumble/checkpoint.h"
 
 namespace tumble::cli {
 namespace {
@@ -157,6 +158,39 @@ std::string summaryJson(const Summary& s) {
     return j.dump(2) + "\n";
 }
 
+namespace {
+
+/// The first multiple of `period` after `time` (within a fraction of a step h); `period` for a
+/// period of 0 (every step).
+Real nextMultiple(Real period, Real time, Real h) {
+    if (period <= 0)
+        return period;
+    return period * (std::floor((time + 1e-9 * h) / period) + 1);
+}
+
+/// Loads the checkpoint into the world built from the scene, which must be the one it was
+/// written from: the same bodies, springs and joints, and the same time step.
+void resume(World& world, const BuiltScene& built, const Scene& scene, const std::string& file) {
+    const int bodies = world.bodyCount(), springs = world.springCount();
+    const int joints = world.jointCount();
+    const Real h = world.settings().timeStep;
+    loadCheckpoint(world, file);
+    bool valid = true;
+    for (const BodyId b : built.bodies)
+        valid = valid && world.isValid(b);
+    if (!valid || world.bodyCount() != bodies || world.springCount() != springs ||
+        world.jointCount() != joints)
+        fail("--resume ", file, ": the checkpoint holds ", world.bodyCount(), " bodies, ",
+             world.springCount(), " springs and ", world.jointCount(), " joints; scene ",
+             scene.name, " builds ", bodies, ", ", springs, " and ", joints,
+             ": it was written from another scene");
+    if (world.settings().timeStep != h)
+        fail("--resume ", file, ": the checkpoint's time step ", world.settings().timeStep,
+             " s is not the scene's ", h, " s (--dt or world.timeStep)");
+}
+
+}  // namespace
+
 int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, std::ostream& err,
              Summary* result) {
     for (const std::vector<int>* list : {&options.trace, &options.recordBodies}) {
@@ -169,10 +203,15 @@ int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, s
     const View view = parseView(options.view);
     BuiltScene built = buildScene(scene);
     World& world = built.world;
+    if (!options.resume.empty())
+        resume(world, built, scene, options.resume);
     // Every output is opened before the first step: a bad path is bad input, not a lost run.
     auto csv = openOutput(options.record, "record");
     auto summaryFile = openOutput(options.summary, "summary");
     auto pictureFile = openOutput(options.picture, "picture");
+    const bool checkpointing = !options.checkpoint.empty();
+    if (checkpointing)  // the state at the start; a path that cannot be written fails here
+        saveCheckpoint(world, options.checkpoint);
 
     Summary s;
     s.scene = scene.name;
@@ -210,12 +249,15 @@ int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, s
         writeCsvRows(*csv, scene, built, options.recordBodies);
     }
     const Real recordPeriod = options.recordRate > 0 ? 1 / options.recordRate : 0;
-    Real nextRecord = recordPeriod;
-    sample(0);
+    Real nextRecord = nextMultiple(recordPeriod, world.time(), s.timeStep);
+    Real nextCheckpoint = nextMultiple(options.checkpointEvery, world.time(), s.timeStep);
+    const std::uint64_t first = world.stepCount();  // 0, or the step a resumed run starts from
+    s.steps = first;
+    sample(first);
 
     Progress progress(options.terminal && !options.quiet, scene.duration);
     const auto begin = Clock::now();
-    for (std::uint64_t i = 1; i <= steps; ++i) {
+    for (std::uint64_t i = first + 1; i <= steps; ++i) {
         const StepStatus status = world.step();
         if (!status.ok()) {
             s.status = "non-finite state";
@@ -232,10 +274,18 @@ int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, s
             writeCsvRows(*csv, scene, built, options.recordBodies);
             nextRecord += recordPeriod;
         }
+        if (checkpointing && options.checkpointEvery > 0 &&
+            world.time() >= nextCheckpoint - 1e-9 * s.timeStep) {
+            saveCheckpoint(world, options.checkpoint);
+            nextCheckpoint += options.checkpointEvery;
+        }
         sample(i);
         progress.update(world.time(), std::chrono::duration<double>(Clock::now() - begin).count());
     }
     progress.clear();
+    // After a failed step the world holds the last finite state: that is what is saved.
+    if (checkpointing)
+        saveCheckpoint(world, options.checkpoint);
     s.wallTime = std::chrono::duration<double>(Clock::now() - begin).count();
     s.simulatedTime = world.time();
     s.realTimeFactor = s.wallTime > 0 ? s.simulatedTime / s.wallTime : 0;

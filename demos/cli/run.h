@@ -22,6 +22,11 @@ struct RunOptions {
     std::vector<int> recordBodies;  ///< body indices the CSV holds; empty: every non-static one
     bool quiet = false;             ///< no table, no progress bar
     bool terminal = false;          ///< stdout is a terminal: a progress bar for long runs
+    /// Checkpoint file ("" = none): written before the first step, every checkpointEvery of
+    /// simulated time, and at the end (docs/checkpoint.md).
+    std::string checkpoint;
+    Real checkpointEvery = 0;  ///< (s), > 0; 0 = only at the start and the end
+    std::string resume;        ///< checkpoint to continue from ("" = start at t = 0)
 };
 
 /// Energy of the dynamic bodies and springs (J). Potential is -m g.c with each body's gravity

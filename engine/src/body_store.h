@@ -64,6 +64,7 @@ struct BodyInfo {
 };
 
 class BodyStore {
+    friend struct CheckpointAccess;  ///< checkpoint.cpp saves and restores the private state
 public:
     BodyId add(const BodyDef& def);
     void remove(BodyId id);

@@ -29,6 +29,7 @@
 namespace tumble {
 
 class ContactManager {
+    friend struct CheckpointAccess;  ///< checkpoint.cpp saves and restores the private state
 public:
     /// Registers a shape with the broadphase at its body's current pose.
     void addShape(ShapeStore& shapes, std::uint32_t slot, const BodyStore& bodies, Real h);

@@ -22,6 +22,7 @@ struct ControllerRecord {
 };
 
 class Controllers {
+    friend struct CheckpointAccess;  ///< checkpoint.cpp saves and restores the private state
 public:
     /// The record of a joint's controller, or null.
     ControllerRecord* find(JointId joint);

@@ -18,6 +18,7 @@
 namespace tumble {
 
 class ImpactTracker {
+    friend struct CheckpointAccess;  ///< checkpoint.cpp saves and restores the private state
 public:
     /// After the solve of a step that succeeded: closes the impacts opened by the previous step
     /// (appending them to `out`) and opens this step's.

@@ -37,6 +37,7 @@ struct JointStepState {
 };
 
 class JointStore {
+    friend struct CheckpointAccess;  ///< checkpoint.cpp saves and restores the private state
 public:
     JointId add(const JointRecord& record);
     void remove(JointId id);

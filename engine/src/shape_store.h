@@ -26,6 +26,7 @@ struct ShapeRecord {
 };
 
 class ShapeStore {
+    friend struct CheckpointAccess;  ///< checkpoint.cpp saves and restores the private state
 public:
     /// Stores a shape (checked by the caller); returns its id.
     ShapeId add(const ShapeDef& def, BodyId body);

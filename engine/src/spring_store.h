@@ -22,6 +22,7 @@ struct SpringStepState {
 };
 
 class SpringStore {
+    friend struct CheckpointAccess;  ///< checkpoint.cpp saves and restores the private state
 public:
     SpringId add(const SpringDef& def);
     void remove(SpringId id);
@@ -61,6 +62,7 @@ private:
 
 /// Drag of the bodies that have any, in the order drag was first set.
 class DragStore {
+    friend struct CheckpointAccess;  ///< checkpoint.cpp saves and restores the private state
 public:
     /// Sets (or with all-zero coefficients, clears) the body's drag.
     void set(BodyId body, const Drag& drag);

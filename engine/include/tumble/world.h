@@ -321,6 +321,7 @@ public:
 
 private:
     struct Impl;
+    friend struct CheckpointAccess;  ///< checkpoint.cpp saves and restores the private state
     template <typename OnHit>
     static void castRay(const Impl& w, const Vec3& origin, const Vec3& translation,
                         const QueryFilter& filter, OnHit&& onHit);

@@ -61,6 +61,7 @@ inline bool refitFatBox(Aabb& fat, const Aabb& tight, Real margin) {
 Real rayEntryFraction(const Vec3& origin, const Vec3& direction, Real maxFraction, const Aabb& box);
 
 class SweepAndPrune {
+    friend struct CheckpointAccess;  ///< checkpoint.cpp saves and restores the private state
 public:
     /// A variance ratio above which the sweep axis is re-chosen (hysteresis), > 1.
     static constexpr Real kAxisSwitchFactor = 1.5;

@@ -1,0 +1,424 @@
+// Checkpoint and resume: a world restored from a checkpoint continues bitwise-identically to the
+// world that was saved (a pile with sleeping bodies and active contacts, joints with motors,
+// limits and a controller, a net of threads catching a ball), and a truncated, corrupted,
+// wrong-version or missing file is refused, naming the file and the fault, with the world left
+// as it was.
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "checkpoint_io.h"
+#include "refusal.h"
+#include "tumble/checkpoint.h"
+#include "tumble/lumped.h"
+#include "tumble/world.h"
+
+namespace tumble {
+namespace {
+
+using test::contains;
+using test::refusal;
+
+/// Every body's pose, velocities and awake flag, as raw bits, in dense-slot order of the ids
+/// given.
+std::vector<std::uint64_t> stateBits(const World& world, const std::vector<BodyId>& bodies) {
+    std::vector<std::uint64_t> bits;
+    const auto add = [&](const Vec3& v) {
+        for (int k = 0; k < 3; ++k)
+            bits.push_back(std::bit_cast<std::uint64_t>(v[k]));
+    };
+    for (const BodyId b : bodies) {
+        add(world.position(b));
+        add(world.orientation(b).coeffs().head<3>());
+        bits.push_back(std::bit_cast<std::uint64_t>(world.orientation(b).w()));
+        add(world.linearVelocity(b));
+        add(world.angularVelocity(b));
+        bits.push_back(world.isAwake(b) ? 1 : 0);
+        add(world.interpolatedTransform(b, 0.25).position);  // the previous pose counts too
+    }
+    return bits;
+}
+
+struct Scene {
+    World world;
+    std::vector<BodyId> bodies;
+    std::vector<SpringId> springs;
+};
+
+BodyId addBody(Scene& scene, const Vec3& position, BodyType type = BodyType::Dynamic) {
+    BodyDef def;
+    def.type = type;
+    def.position = position;
+    const BodyId id = scene.world.createBody(def);
+    scene.bodies.push_back(id);
+    return id;
+}
+
+// A pile that falls asleep, next to a pyramid that a ball falls onto after the checkpoint; the
+// shapes cover every geometry type, and one body has drag.
+Scene pileScene() {
+    Scene s;
+    const BodyId ground = addBody(s, Vec3::Zero(), BodyType::Static);
+    s.world.createShape(ground, ShapeDef{.geometry = HalfSpace{}});
+    // Left: a stack of mixed shapes that settles and sleeps.
+    const std::vector<Shape> shapes = {
+        Box{Vec3(0.5, 0.5, 0.25)}, Cylinder{0.4, 0.25}, Box{Vec3(0.4, 0.3, 0.25)},
+        ConvexHull::fromPoints(std::vector<Vec3>{Vec3(-0.4, -0.4, -0.25), Vec3(0.4, -0.4, -0.25),
+                                                 Vec3(0.4, 0.4, -0.25), Vec3(-0.4, 0.4, -0.25),
+                                                 Vec3(-0.3, -0.3, 0.25), Vec3(0.3, -0.3, 0.25),
+                                                 Vec3(0.3, 0.3, 0.25), Vec3(-0.3, 0.3, 0.25)})};
+    for (std::size_t i = 0; i < shapes.size(); ++i) {
+        const BodyId b = addBody(s, Vec3(-4, 0, 0.26 + 0.52 * static_cast<Real>(i)));
+        s.world.createShape(b, ShapeDef{.geometry = shapes[i]});
+    }
+    // Right: a pyramid of boxes, and a capsule and a sphere dropped on it.
+    constexpr int kBase = 5;
+    for (int row = 0; row < kBase; ++row) {
+        for (int i = 0; i < kBase - row; ++i) {
+            const Real x = 1.02 * (i - 0.5 * (kBase - row - 1));
+            const BodyId b = addBody(s, Vec3(x, 0, 0.5 + 1.0 * row));
+            s.world.createShape(
+                b, ShapeDef{.geometry = Box{Vec3::Constant(0.5)}, .material = {.friction = 0.6}});
+        }
+    }
+    const BodyId capsule = addBody(s, Vec3(0.3, 0.1, 12));
+    s.world.createShape(capsule, ShapeDef{.geometry = Capsule{0.3, 0.4}});
+    s.world.setAngularVelocity(capsule, Vec3(0.5, 1, 0));
+    const BodyId ball = addBody(s, Vec3(-0.6, 0, 16));
+    s.world.createShape(
+        ball, ShapeDef{.geometry = Sphere{0.4}, .material = {.restitution = 0.5, .density = 4000}});
+    s.world.setDrag(ball, Drag{.linear = 0.1, .quadratic = 0.05});
+    // Far right: a box that lands at 1.4 s and falls asleep after the checkpoint (1.67 s), so
+    // the sleep timers it carries decide the step it stops on.
+    const BodyId late = addBody(s, Vec3(8, 0, 10));
+    s.world.createShape(late, ShapeDef{.geometry = Box{Vec3::Constant(0.25)}});
+    return s;
+}
+
+// A hinge chain (motor, limit, breakable), a slider under a PD controller, a rope, a fixed
+// joint and a ball joint between two bodies that collide with the ground.
+Scene jointScene() {
+    Scene s;
+    WorldDef def;
+    def.enableSleep = false;
+    s.world = World(def);
+    const BodyId ground = addBody(s, Vec3::Zero(), BodyType::Static);
+    s.world.createShape(ground, ShapeDef{.geometry = HalfSpace{}});
+    BodyId previous{};
+    for (int i = 0; i < 4; ++i) {
+        const BodyId link = addBody(s, Vec3(0.5 + 1.0 * i, 0, 3));
+        s.world.createShape(link, ShapeDef{.geometry = Box{Vec3(0.5, 0.1, 0.1)}});
+        JointDef j{.type = JointType::Hinge,
+                   .bodyA = link,
+                   .bodyB = previous,
+                   .anchor = Vec3(1.0 * i, 0, 3),
+                   .axis = Vec3::UnitY()};
+        if (i == 0) {
+            j.enableMotor = true;
+            j.motorSpeed = 1.5;
+            j.maxMotorForce = 40;
+        } else {
+            j.enableLimit = true;
+            j.lower = -0.6;
+            j.upper = 0.8;
+        }
+        if (i == 3)
+            j.breakForce = 25;
+        s.world.createJoint(j);
+        previous = link;
+    }
+    const BodyId cart = addBody(s, Vec3(-3, 0, 1));
+    s.world.createShape(cart, ShapeDef{.geometry = Box{Vec3(0.3, 0.3, 0.3)}});
+    const JointId slider = s.world.createJoint(JointDef{.type = JointType::Slider,
+                                                        .bodyA = cart,
+                                                        .bodyB = {},
+                                                        .anchor = Vec3(-3, 0, 1),
+                                                        .axis = Vec3::UnitX(),
+                                                        .enableLimit = true,
+                                                        .lower = -1,
+                                                        .upper = 1});
+    s.world.setJointController(slider, ControllerDef{.target = 0.7, .kp = 200, .ki = 20, .kd = 5});
+    const BodyId weight = addBody(s, Vec3(-3, 0, 0.6));
+    s.world.createShape(weight, ShapeDef{.geometry = Sphere{0.2}});
+    s.world.createJoint(JointDef{.type = JointType::Distance,
+                                 .bodyA = weight,
+                                 .bodyB = cart,
+                                 .anchor = Vec3(-3, 0, 0.6),
+                                 .anchorB = Vec3(-3, 0, 1),
+                                 .rope = true});
+    const BodyId a = addBody(s, Vec3(3, 2, 0.8));
+    const BodyId b = addBody(s, Vec3(3.6, 2, 0.8));
+    s.world.createShape(a, ShapeDef{.geometry = Sphere{0.3}});
+    s.world.createShape(b, ShapeDef{.geometry = Box{Vec3::Constant(0.25)}});
+    s.world.createJoint(
+        JointDef{.type = JointType::Fixed, .bodyA = a, .bodyB = b, .anchor = Vec3(3.3, 2, 0.8)});
+    const BodyId c = addBody(s, Vec3(3.3, 2, 2));
+    s.world.createShape(c, ShapeDef{.geometry = Sphere{0.2}});
+    s.world.createJoint(JointDef{.type = JointType::Ball,
+                                 .bodyA = c,
+                                 .bodyB = b,
+                                 .anchor = Vec3(3.3, 2, 1.6),
+                                 .collideConnected = true});
+    s.world.setAngularVelocity(c, Vec3(2, 0, 1));
+    return s;
+}
+
+// A net of tension-only threads with colliding nodes catching a ball, plus an explicit spring.
+Scene netScene() {
+    Scene s;
+    const BodyId ground = addBody(s, Vec3::Zero(), BodyType::Static);
+    s.world.createShape(ground, ShapeDef{.geometry = HalfSpace{}});
+    NetDef net;
+    net.rows = 12;
+    net.columns = 12;
+    net.meshSize = 0.1;
+    net.center = Vec3(0, 0, 1.5);
+    net.node.mass = 0.01;
+    net.node.radius = 0.01;
+    net.node.collide = true;
+    net.cornerMass = 0.2;
+    net.thread.axialRigidity = 2e3;
+    net.thread.damping = 0.05;
+    net.velocity = Vec3(0, 0, -1);
+    net.spreadSpeed = 1;
+    const Lumped lumped = createNet(s.world, net);
+    s.bodies.insert(s.bodies.end(), lumped.nodes.begin(), lumped.nodes.end());
+    s.springs = lumped.threads;
+    const BodyId ball = addBody(s, Vec3(0.05, -0.03, 1.9));
+    s.world.createShape(ball, ShapeDef{.geometry = Sphere{0.15}, .material = {.density = 300}});
+    s.world.setLinearVelocity(ball, Vec3(0, 0, -2));
+    const BodyId bob = addBody(s, Vec3(2, 0, 2));
+    s.world.createShape(bob, ShapeDef{.geometry = Sphere{0.1}});
+    s.world.createSpring(SpringDef{.bodyA = bob,
+                                   .bodyB = {},
+                                   .localAnchorB = Vec3(2, 0, 3),
+                                   .restLength = 0.8,
+                                   .stiffness = 50,
+                                   .damping = 0.5,
+                                   .formulation = SpringFormulation::Explicit});
+    return s;
+}
+
+void run(World& world, int steps) {
+    for (int i = 0; i < steps; ++i)
+        ASSERT_TRUE(world.step().ok()) << "step " << i;
+}
+
+int sleepingCount(const World& world, const std::vector<BodyId>& bodies) {
+    int n = 0;
+    for (const BodyId b : bodies)
+        n += world.bodyType(b) == BodyType::Dynamic && !world.isAwake(b);
+    return n;
+}
+
+int touchingAwakeContacts(const World& world) {
+    int n = 0;
+    for (const Contact& c : world.contacts())
+        n += c.manifold.pointCount > 0 && (world.isAwake(c.bodyA) || world.isAwake(c.bodyB));
+    return n;
+}
+
+/// Runs `warmup` steps, checkpoints, restores into a default world, and steps both for `further`
+/// steps comparing every body's state bitwise at every step, and the whole checkpoint at the end.
+void expectBitwiseResume(Scene& original, int warmup, int further) {
+    run(original.world, warmup);
+    const std::vector<std::uint8_t> saved = checkpointBytes(original.world);
+    World resumed;  // a different (empty) world: everything must come from the checkpoint
+    restoreCheckpoint(resumed, saved);
+    ASSERT_EQ(checkpointBytes(resumed), saved) << "the restored world saves differently";
+    ASSERT_EQ(resumed.stepCount(), original.world.stepCount());
+    ASSERT_EQ(std::bit_cast<std::uint64_t>(resumed.time()),
+              std::bit_cast<std::uint64_t>(original.world.time()));
+    ASSERT_EQ(stateBits(original.world, original.bodies), stateBits(resumed, original.bodies))
+        << "differs before any step";
+    for (int i = 0; i < further; ++i) {
+        ASSERT_TRUE(original.world.step().ok());
+        ASSERT_TRUE(resumed.step().ok());
+        ASSERT_EQ(stateBits(original.world, original.bodies), stateBits(resumed, original.bodies))
+            << "diverged at step " << i + 1 << " after the checkpoint";
+    }
+    EXPECT_EQ(checkpointBytes(original.world), checkpointBytes(resumed));
+}
+
+TEST(Checkpoint, PileWithSleepingBodiesAndActiveContactsResumesBitwise) {
+    Scene s = pileScene();
+    run(s.world, 100);  // the left stack is asleep, the pyramid still settling
+    EXPECT_GE(sleepingCount(s.world, s.bodies), 4);
+    EXPECT_GE(touchingAwakeContacts(s.world), 5);
+    const BodyId late = s.bodies.back();
+    ASSERT_TRUE(s.world.isAwake(late));
+    expectBitwiseResume(s, 0, 150);  // the capsule and the ball land on the pyramid
+    EXPECT_FALSE(s.world.isAwake(late));
+    EXPECT_LT(s.world.position(s.bodies[s.bodies.size() - 2]).z(), 8);  // the ball came down
+}
+
+// Destroyed bodies and shapes leave free id slots, dead contacts and broadphase removals that
+// the next step completes; a checkpoint taken right after the destruction carries them.
+TEST(Checkpoint, PendingRemovalsAndFreeSlotsResumeBitwise) {
+    Scene s = pileScene();
+    run(s.world, 60);
+    const std::size_t top = 4 + 1 + 15;  // ground, the left stack, the pyramid's last box
+    const BodyId removed = s.bodies[top];
+    s.world.destroyBody(removed);
+    s.bodies.erase(s.bodies.begin() + static_cast<long>(top));
+    s.world.destroyShape(ShapeId{0, 1});             // the ground's half-space: the pile falls
+    const BodyId extra = addBody(s, Vec3(3, 3, 1));  // takes the freed slot, generation 2
+    s.world.createShape(extra, ShapeDef{.geometry = Sphere{0.3}});
+    EXPECT_EQ(extra.index, removed.index);
+    EXPECT_EQ(extra.generation, removed.generation + 1);
+    expectBitwiseResume(s, 0, 60);
+}
+
+TEST(Checkpoint, JointsWithMotorLimitsControllerAndBreakingResumeBitwise) {
+    Scene s = jointScene();
+    expectBitwiseResume(s, 45, 200);
+    int broken = 0;
+    for (std::uint32_t i = 0; i < 8; ++i)  // the scene's joints: slots 0 to 6, generation 1
+        broken += s.world.isValid(JointId{i, 1}) && s.world.jointState(JointId{i, 1}).broken;
+    EXPECT_EQ(broken, 1);  // the last link's hinge broke after the checkpoint
+}
+
+TEST(Checkpoint, NetCatchingABallResumesBitwise) {
+    Scene s = netScene();
+    run(s.world, 12);  // the ball reaches the net during the resumed run
+    expectBitwiseResume(s, 0, 90);
+    // The threads' active set changed during the resumed run: some went slack, some taut.
+    int slack = 0;
+    for (const SpringId thread : s.springs)
+        slack += s.world.springState(thread).slack;
+    EXPECT_GT(slack, 0);
+    EXPECT_LT(slack, static_cast<int>(s.springs.size()));
+}
+
+TEST(Checkpoint, FileRoundTripReplacesTheTemporary) {
+    Scene s = pileScene();
+    run(s.world, 30);
+    const std::filesystem::path file =
+        std::filesystem::temp_directory_path() / "tumble_checkpoint_test.ckpt";
+    std::filesystem::path tmp = file;
+    tmp += ".tmp";
+    saveCheckpoint(s.world, file);
+    EXPECT_TRUE(std::filesystem::exists(file));
+    EXPECT_FALSE(std::filesystem::exists(tmp));
+    run(s.world, 10);
+    saveCheckpoint(s.world, file);  // over the previous one
+    World loaded;
+    loadCheckpoint(loaded, file);
+    EXPECT_EQ(loaded.stepCount(), 40u);
+    EXPECT_EQ(checkpointBytes(loaded), checkpointBytes(s.world));
+    std::filesystem::remove(file);
+}
+
+// --- refusals ------------------------------------------------------------------------------
+
+std::uint64_t readU64(const std::vector<std::uint8_t>& b, std::size_t at) {
+    std::uint64_t v = 0;
+    for (int i = 0; i < 8; ++i)
+        v |= std::uint64_t{b[at + i]} << (8 * i);
+    return v;
+}
+void writeU64(std::vector<std::uint8_t>& b, std::size_t at, std::uint64_t v) {
+    for (int i = 0; i < 8; ++i)
+        b[at + i] = static_cast<std::uint8_t>(v >> (8 * i));
+}
+
+class CheckpointRefusal : public ::testing::Test {
+protected:
+    void SetUp() override {
+        Scene s = netScene();
+        run(s.world, 5);
+        good = checkpointBytes(s.world);
+        Scene other = jointScene();
+        run(other.world, 3);
+        target = std::move(other.world);
+        before = checkpointBytes(target);
+    }
+    /// The refusal message of restoring `bytes` into `target`, which must be left untouched.
+    std::string refuse(const std::vector<std::uint8_t>& bytes) {
+        const std::string message = refusal([&] { restoreCheckpoint(target, bytes, "run.ckpt"); });
+        EXPECT_EQ(checkpointBytes(target), before) << "a refused checkpoint changed the world";
+        EXPECT_TRUE(contains(message, "run.ckpt"));
+        return message;
+    }
+    std::vector<std::uint8_t> good;
+    std::vector<std::uint8_t> before;
+    World target;
+};
+
+TEST_F(CheckpointRefusal, Truncated) {
+    for (const std::size_t size :
+         {std::size_t{0}, std::size_t{20}, good.size() / 2, good.size() - 1}) {
+        std::vector<std::uint8_t> cut(good.begin(), good.begin() + static_cast<long>(size));
+        EXPECT_TRUE(contains(refuse(cut), "truncated")) << size;
+    }
+}
+
+TEST_F(CheckpointRefusal, BitFlipAnywhereInThePayload) {
+    for (const std::size_t at : {std::size_t{40}, good.size() / 3, good.size() - 1}) {
+        std::vector<std::uint8_t> flipped = good;
+        flipped[at] ^= 0x10;
+        EXPECT_TRUE(contains(refuse(flipped), "checksum")) << at;
+    }
+}
+
+TEST_F(CheckpointRefusal, WrongVersionAndMagic) {
+    std::vector<std::uint8_t> version = good;
+    version[8] = static_cast<std::uint8_t>(kCheckpointVersion + 1);
+    EXPECT_TRUE(contains(refuse(version), "version 2, this build reads version 1"));
+    std::vector<std::uint8_t> magic = good;
+    magic[0] = 'X';
+    EXPECT_TRUE(contains(refuse(magic), "not a Tumble checkpoint"));
+}
+
+// A payload cut short with a header that agrees (length and checksum recomputed): the reader
+// itself must notice, without reading past the end.
+TEST_F(CheckpointRefusal, ConsistentHeaderOverABadPayload) {
+    std::vector<std::uint8_t> cut(good.begin(), good.begin() + static_cast<long>(good.size() / 2));
+    writeU64(cut, 16, cut.size() - 32);
+    writeU64(cut, 24, checkpoint_io::fnv1a(std::span<const std::uint8_t>(cut).subspan(32)));
+    EXPECT_TRUE(contains(refuse(cut), "corrupt payload"));
+    EXPECT_EQ(readU64(good, 16), good.size() - 32);
+}
+
+// Payload bytes changed behind a recomputed checksum (what the checksum cannot catch): the
+// load either refuses with the file's name or succeeds, and never reads out of bounds.
+TEST_F(CheckpointRefusal, CraftedPayloadsAreRefusedOrLoadedNeverCrash) {
+    std::uint64_t seed = 12345;
+    int refused = 0;
+    constexpr int kTrials = 400;
+    for (int trial = 0; trial < kTrials; ++trial) {
+        std::vector<std::uint8_t> crafted = good;
+        for (int flips = 0; flips < 3; ++flips) {
+            seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+            const std::size_t at = 32 + (seed >> 33) % (crafted.size() - 32);
+            crafted[at] ^= static_cast<std::uint8_t>(1u << ((seed >> 20) % 8));
+        }
+        writeU64(crafted, 24,
+                 checkpoint_io::fnv1a(std::span<const std::uint8_t>(crafted).subspan(32)));
+        World world;
+        const std::string message =
+            refusal([&] { restoreCheckpoint(world, crafted, "crafted.ckpt"); });
+        if (!message.empty()) {
+            ++refused;
+            EXPECT_TRUE(contains(message, "checkpoint crafted.ckpt: corrupt payload at byte"));
+        }
+    }
+    EXPECT_GT(refused, 0);
+}
+
+TEST(Checkpoint, MissingOrUnwritableFileIsRefused) {
+    World world;
+    const std::filesystem::path missing = "/nonexistent-dir/none.ckpt";
+    EXPECT_TRUE(contains(refusal([&] { loadCheckpoint(world, missing); }), missing.string()));
+    EXPECT_TRUE(contains(refusal([&] { saveCheckpoint(world, missing); }), "cannot open"));
+}
+
+}  // namespace
+}  // namespace tumble
