@@ -482,8 +482,7 @@ void restoreCheckpoint(World& world, std::span<const std::uint8_t> bytes, std::s
         reader.corrupt("bytes left after the last field");
     CheckpointAccess::check(reader, *loaded);
 
-    loaded->contacts.events = &loaded->pendingEvents;
-    loaded->islands.events = &loaded->pendingEvents;
+    loaded->connectLogs();
     loaded->preStep = std::move(current->preStep);
     current.swap(loaded);
 }

@@ -32,9 +32,7 @@ World::World(const WorldDef& def) : impl_(std::make_unique<Impl>()) {
     impl_->settings = def;
     impl_->contacts.contactMargin = def.contactMargin;
     impl_->contacts.aabbMargin = def.aabbMargin;
-    impl_->contacts.events = &impl_->pendingEvents;
-    impl_->contacts.warnings = &impl_->warnings;
-    impl_->islands.events = &impl_->pendingEvents;
+    impl_->connectLogs();
 }
 
 World::~World() = default;

@@ -52,6 +52,13 @@ struct World::Impl {
     EventLog events;         ///< published when a step returns
     WarningLog warnings;
 
+    /// Points the stages at this world's event and warning logs (after construction or load).
+    void connectLogs() {
+        contacts.events = &pendingEvents;
+        islands.events = &pendingEvents;
+        contacts.warnings = &warnings;
+    }
+
     StepContext context() const {
         return {settings.timeStep, 1 / settings.timeStep, settings.gravity};
     }
