@@ -191,6 +191,8 @@ SolverStats ContactSolver::solve(std::span<SolverBody> bodies,
             stats.deepestPenetration = std::max(stats.deepestPenetration, -c.points[i].separation);
         }
     }
+    if (settings.jointGeometricStiffness && !joints.empty())
+        applyJointGeometricStiffness(bodies, joints, h, geometricStiffness_);
     prepare(bodies, constraints, h, settings);
     prepareSpringRows(bodies, springs, h, settings.warmStart);
     directSprings_ = settings.springSolve == SpringSolve::Direct && !springs.empty();
@@ -198,6 +200,19 @@ SolverStats ContactSolver::solve(std::span<SolverBody> bodies,
         springBlock_.prepare(bodies, springs);
     joints_ = joints;
     prepareJointRows(bodies, joints_, h, settings.warmStart);
+    directJoints_ = false;
+    if (settings.jointSolve == SpringSolve::Direct && !joints.empty()) {
+        buildJointBlockRows(bodies, joints_, jointBlockRows_);
+        jointBlock_.prepare(bodies, jointBlockRows_);
+        directJoints_ = jointBlock_.ready();
+        if (!directJoints_) {
+            for (JointRow& row : joints_)
+                row.blockSolved = false;
+        }
+    } else {
+        for (JointRow& row : joints_)
+            row.blockSolved = false;
+    }
     const bool split = settings.stabilisation == Stabilisation::SplitImpulse;
     const Real bias = split ? settings.splitImpulseFactor : settings.baumgarte;
     jointBias_ = split ? 0 : bias;
@@ -215,6 +230,8 @@ SolverStats ContactSolver::solve(std::span<SolverBody> bodies,
             pseudo[i].angular -= bodies[i].angularVelocity;
         }
     }
+    if (directJoints_)
+        storeJointBlockImpulses(joints_, jointBlockRows_);
     applyRestitution(bodies, constraints, settings, h, split ? 0 : bias);
     stats.maxResidual = residual(bodies, constraints, settings, inverseH, split ? 0 : bias);
     if (split)
@@ -252,6 +269,10 @@ int ContactSolver::runSweeps(std::span<SolverBody> bodies, std::span<ContactCons
             springChange = solveSpringRows(bodies, springs, settings.relaxation);
         else if (sweep == 0 || !constraints.empty())
             springChange = springBlock_.solve(bodies, springs);
+        if (directJoints_) {
+            updateJointBlockTargets(bodies, joints_, jointBlockRows_, jointBias_, inverseH);
+            springChange = std::max(springChange, jointBlock_.solve(bodies, jointBlockRows_));
+        }
         springChange = std::max(springChange, solveJointRows(bodies, joints_, settings.relaxation,
                                                              jointBias_, inverseH));
         const Real largestChange = std::max(

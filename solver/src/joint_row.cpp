@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Eigenvalues>
+
 #include "tumble/solver/contact_solver.h"
 
 namespace tumble {
@@ -10,6 +12,11 @@ namespace {
 
 using Mat6 = Eigen::Matrix<Real, 6, 6>;
 using Vec6 = Eigen::Matrix<Real, 6, 1>;
+
+// Geometric stiffness: the (omega h)^2 left to the explicit part when beta > 0 is
+// 2 kExplicitShare. 1/2 (a = 1, half the single-mode limit of 2): with 1 (a^2 = 2) the chain
+// still blew up -- neighbouring links couple, and Lambda lags a step.
+constexpr Real kExplicitShare = 0.5;
 
 // Anchors closer than this give the distance row no direction (m).
 constexpr Real kMinimumLength = 1e-12;
@@ -266,7 +273,7 @@ Real solveJointRows(std::span<SolverBody> bodies, std::span<JointRow> rows, Real
             largest = std::max(largest, solveAxial(a, b, row, relaxation, bias, inverseH, h));
 
         const int n = row.linearRows + row.angularRows;
-        if (n == 0)
+        if (n == 0 || row.blockSolved)
             continue;
         const Vec3 relative = anchorVelocity(b, row.rB) - anchorVelocity(a, row.leverA);
         const Vec3 spin = b.angularVelocity - a.angularVelocity;
@@ -350,6 +357,115 @@ void solveJointPositions(std::span<SolverBody> pseudoBodies, std::span<JointRow>
             applyLinear(a, b, row, linear);
             applyAngular(a, b, angular);
         }
+    }
+}
+
+void buildJointBlockRows(std::span<const SolverBody> bodies, std::span<JointRow> rows,
+                         std::vector<SpringRow>& block) {
+    block.clear();
+    for (JointRow& row : rows) {
+        row.blockSolved = row.active && row.type == JointType::Ball && row.linearRows == 3 &&
+                          row.bodyA != row.bodyB;
+        if (!row.blockSolved)
+            continue;
+        const SolverBody& a = bodies[row.bodyA];
+        const SolverBody& b = bodies[row.bodyB];
+        for (int k = 0; k < 3; ++k) {
+            SpringRow r;
+            r.bodyA = row.bodyA;
+            r.bodyB = row.bodyB;
+            r.rA = row.leverA;
+            r.rB = row.rB;
+            r.direction = row.directions[k];
+            r.angularA = row.leverA.cross(r.direction);
+            r.angularB = row.rB.cross(r.direction);
+            r.angularImpulseA = a.inverseInertia * r.angularA;
+            r.angularImpulseB = b.inverseInertia * r.angularB;
+            const Real inverse = a.inverseMass + b.inverseMass + r.angularA.dot(r.angularImpulseA) +
+                                 r.angularB.dot(r.angularImpulseB);
+            r.mass = inverse > 0 ? 1 / inverse : 0;
+            r.softness = 0;
+            r.impulse = r.direction.dot(row.linearImpulse);
+            block.push_back(r);
+        }
+    }
+}
+
+void updateJointBlockTargets(std::span<const SolverBody> bodies, std::span<JointRow> rows,
+                             std::span<SpringRow> block, Real bias, Real inverseH) {
+    std::size_t next = 0;
+    for (JointRow& row : rows) {
+        if (!row.blockSolved)
+            continue;
+        updateDrift(bodies[row.bodyA], bodies[row.bodyB], row, 1 / inverseH);
+        for (int k = 0; k < 3; ++k, ++next) {
+            block[next].bias =
+                inverseH * (bias * row.error(k) + row.directions[k].dot(row.pointDrift));
+        }
+    }
+}
+
+void storeJointBlockImpulses(std::span<JointRow> rows, std::span<const SpringRow> block) {
+    std::size_t next = 0;
+    for (JointRow& row : rows) {
+        if (!row.blockSolved)
+            continue;
+        row.linearImpulse.setZero();
+        for (int k = 0; k < 3; ++k, ++next)
+            row.linearImpulse += block[next].impulse * block[next].direction;
+    }
+}
+
+void applyJointGeometricStiffness(std::span<SolverBody> bodies, std::span<const JointRow> rows,
+                                  Real h, std::vector<Mat3>& stiffness) {
+    stiffness.assign(bodies.size(), Mat3::Zero());
+    bool any = false;
+    // dtau / dtheta of an impulse p at lever r, times h: (r p' - (p . r) 1) h.
+    const auto add = [&](std::uint32_t body, const Vec3& r, const Vec3& p) {
+        if (bodies[body].inverseInertia.isZero())
+            return;
+        stiffness[body] += h * (r * p.transpose() - p.dot(r) * Mat3::Identity());
+        any = true;
+    };
+    for (const JointRow& row : rows) {
+        if (!(hasPointBlock(row.type) || row.type == JointType::Slider) ||
+            row.linearImpulse.isZero())
+            continue;
+        const Vec3 leverA = row.type == JointType::Slider ? Vec3(row.rA + row.separation) : row.rA;
+        add(row.bodyA, leverA, -row.linearImpulse);
+        add(row.bodyB, row.rB, row.linearImpulse);
+    }
+    if (!any)
+        return;
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        SolverBody& body = bodies[i];
+        if (stiffness[i].isZero())
+            continue;
+        // K = -(symmetric negative part of h S) >= 0 (kg m^2).
+        const Mat3 symmetric = 0.5 * (stiffness[i] + stiffness[i].transpose());
+        const Eigen::SelfAdjointEigenSolver<Mat3> parts(symmetric);
+        const Vec3 restoring = (-parts.eigenvalues()).cwiseMax(0);
+        if (restoring.isZero())
+            continue;
+        const Mat3 k =
+            parts.eigenvectors() * restoring.asDiagonal() * parts.eigenvectors().transpose();
+        // B = (I^-1)^(1/2); G = B K B, whose largest eigenvalue is a^2 = (omega h)^2.
+        const Eigen::SelfAdjointEigenSolver<Mat3> inertia(body.inverseInertia);
+        const Mat3 root = inertia.eigenvectors() *
+                          inertia.eigenvalues().cwiseMax(0).cwiseSqrt().asDiagonal() *
+                          inertia.eigenvectors().transpose();
+        const Mat3 g = root * k * root;
+        const Eigen::SelfAdjointEigenSolver<Mat3> modes(g);
+        const Real a2 = modes.eigenvalues().maxCoeff();
+        if (!(a2 > 2 * kExplicitShare))
+            continue;  // resolved: symplectic Euler keeps it, untouched
+        const Real beta = 0.5 - kExplicitShare / a2;
+        // A^-1 = B (1 + beta G)^-1 B; start from A^-1 I w0 = w0 - beta A^-1 K w0.
+        const Vec3 scaled = (1 + beta * modes.eigenvalues().array()).inverse().matrix();
+        const Mat3 inverse = root * modes.eigenvectors() * scaled.asDiagonal() *
+                             modes.eigenvectors().transpose() * root;
+        body.angularVelocity -= beta * (inverse * (k * body.angularVelocity));
+        body.inverseInertia = 0.5 * (inverse + inverse.transpose());
     }
 }
 

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -301,6 +302,57 @@ TEST(Joints, BadDefinitionsAreRefusedByName) {
     EXPECT_TRUE(
         contains(refusal([&] { world.setJointMotor(ball, false, 1, -2); }), "maxMotorForce = -2"));
     EXPECT_TRUE(contains(refusal([&] { world.jointState(JointId{}); }), "JointId"));
+}
+
+// Two 0.1 kg rods under a 10 kg load at h = 1/60: the rods' rotational mode under the load's
+// tension has omega h ~ 6, beyond what explicit lever arms survive (without the implicit
+// geometric stiffness the joints flew ~2 m apart within a second). The joints hold, and the
+// swing, released at rest, never gains energy.
+TEST(Joints, LightLinksCarryAHeavyLoadAtALargeStep) {
+    World world(quietWorld());
+    const Real tilt = 30 * std::numbers::pi / 180;
+    const Vec3 down(std::sin(tilt), 0, -std::cos(tilt));
+    const Quat along = Quat::FromTwoVectors(Vec3::UnitX(), down);
+    const auto rod = [&](const Vec3& center) {
+        BodyDef def;
+        def.position = center;
+        def.orientation = along;
+        def.mass.mass = 0.1;
+        def.mass.inertia = (Vec3(8e-5, 0.0104, 0.0104) * (0.1 / 12)).asDiagonal();
+        return world.createBody(def);
+    };
+    const BodyId upper = rod(0.05 * down);
+    const BodyId lower = rod(0.15 * down);
+    BodyDef loadDef;
+    loadDef.position = 0.25 * down;
+    loadDef.mass.mass = 10;
+    loadDef.mass.inertia = Mat3::Identity() * 0.01;
+    const BodyId load = world.createBody(loadDef);
+    world.createJoint(
+        JointDef{.type = JointType::Ball, .bodyA = upper, .bodyB = {}, .anchor = Vec3::Zero()});
+    world.createJoint(
+        JointDef{.type = JointType::Ball, .bodyA = lower, .bodyB = upper, .anchor = 0.1 * down});
+    world.createJoint(
+        JointDef{.type = JointType::Ball, .bodyA = load, .bodyB = lower, .anchor = 0.2 * down});
+    const auto energy = [&] {
+        Real e = world.kineticEnergy();
+        e += kGravity * (0.1 * world.centerOfMass(upper).z() + 0.1 * world.centerOfMass(lower).z() +
+                         10 * world.centerOfMass(load).z());
+        return e;
+    };
+    const Real initial = energy();
+    Real worst = 0;
+    for (int i = 0; i < 180; ++i) {
+        ASSERT_TRUE(world.step().ok());
+        const Vec3 top = world.transform(upper).apply(Vec3(-0.05, 0, 0));
+        const Vec3 middle = world.transform(upper).apply(Vec3(0.05, 0, 0)) -
+                            world.transform(lower).apply(Vec3(-0.05, 0, 0));
+        const Vec3 bottom = world.transform(lower).apply(Vec3(0.05, 0, 0)) -
+                            world.transform(load).apply(-0.05 * down);
+        worst = std::max({worst, top.norm(), middle.norm(), bottom.norm()});
+        EXPECT_LE(energy(), initial + 1e-9);
+    }
+    EXPECT_LT(worst, 1e-6);
 }
 
 // Same scene, same results, bit for bit.

@@ -83,6 +83,12 @@ struct SolverSettings {
     /// spring gained by turning within the step, which the linearised solve cannot see (see
     /// SolveStage::projectSprings). Off reproduces the plain linearised implicit step.
     bool projectSprings = true;
+    /// Implicit geometric stiffness of joints' point rows for the motion a step cannot resolve
+    /// (see applyJointGeometricStiffness); off reproduces the explicit lever arms.
+    bool jointGeometricStiffness = true;
+    /// Ball joints' point rows: one exact sparse block solve per sweep (buildJointBlockRows)
+    /// or Gauss-Seidel with the other joint rows.
+    SpringSolve jointSolve = SpringSolve::Direct;
 };
 
 /// The two friction directions the solver uses for normal n (unit): orthonormal, right-handed
@@ -205,6 +211,10 @@ private:
 
     std::span<JointRow> joints_;            ///< of the solve in progress
     Real jointBias_ = 0;                    ///< their bias in the velocity sweeps (Baumgarte only)
+    std::vector<Mat3> geometricStiffness_;  ///< scratch of applyJointGeometricStiffness
+    SpringBlockSolver jointBlock_;          ///< ball joints' point rows (jointSolve Direct)
+    std::vector<SpringRow> jointBlockRows_;
+    bool directJoints_ = false;             ///< this step's ball joints go through jointBlock_
     std::vector<SolverBody> pseudoBodies_;  ///< the joints' position pass works on these
 };
 

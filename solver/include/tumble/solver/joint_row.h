@@ -45,8 +45,10 @@
 #include <cstdint>
 #include <limits>
 #include <span>
+#include <vector>
 
 #include "tumble/solver/solver_body.h"
+#include "tumble/solver/spring_row.h"
 
 namespace tumble {
 
@@ -108,6 +110,8 @@ struct JointRow {
     Real axialDrift = 0;   ///< predicted second-order drift of position (m)
     Real pseudoLower = 0;  ///< position pass: lower limit (or equality) impulse, this step only
     Real pseudoUpper = 0;  ///< position pass: upper limit impulse, this step only
+    /// The point rows go through the direct block (buildJointBlockRows), not the PGS sweeps.
+    bool blockSolved = false;
 };
 
 /// Jacobians, effective masses and drift predictions for a step of length h; applies the
@@ -128,6 +132,56 @@ Real solveJointRows(std::span<SolverBody> bodies, std::span<JointRow> rows, Real
 /// the correction moves positions and never enters the real velocity or the warm start.
 void solveJointPositions(std::span<SolverBody> pseudoBodies, std::span<JointRow> rows, Real bias,
                          Real inverseH, int sweeps);
+
+/// Implicit geometric stiffness of the point rows (ball, hinge, fixed, slider), applied to the
+/// bodies before the solve; `stiffness` is scratch, one entry per body (resized, so no
+/// allocation once warm). The rows hold last step's impulses Lambda (the warm start, read
+/// before prepareJointRows zeroes or projects them).
+///
+/// Why. A row's impulse acts at a lever arm r fixed at the step's start, but the body turns
+/// within the step; the torque r x Lambda then changes by (h w x r) x Lambda = h S w with
+/// S = r Lambda' - (Lambda . r) 1. Taking it at the start is explicit: a link under tension T
+/// has a rotational mode of omega^2 = T L / I (12 T / (m L) for a rod) that semi-implicit Euler
+/// only keeps while omega h < 2, however well the rows converge. The 20-link chain with a
+/// 100x load (omega h ~ 6 at h = 1/60) flew apart with 10 or 300 sweeps alike, and with the
+/// load on only 2 links; it held at h = 1/240.
+///
+/// What. With the torque taken a fraction beta into the step, I (w1 - w0) = sum r x Lambda +
+/// beta h S w1, i.e. (I - beta h S) w1 = I w0 + sum r x Lambda: the body gets the effective
+/// inertia A = I - beta h S (S summed over the body's rows with the lagged Lambda; only its
+/// symmetric negative part -- tension, restoring -- so A >= I stays positive definite) and
+/// starts the solve from A^-1 I w0. On one mode this is the map with amplification
+/// det = 1 / (1 + beta a^2), a = omega h, stable for every a when beta >= 1/2 - 2 / a^2, and
+/// symplectic Euler itself (energy kept) at beta = 0. beta is therefore chosen per body from
+/// its own a^2 (the largest eigenvalue of h I^-1 (-S)): 0 while a^2 <= 1 -- a body whose
+/// motion the step resolves is left exactly as it was, no damping -- and 1/2 - 1/(2 a^2)
+/// beyond, which keeps the remaining explicit part at a^2 = 1, half the single-mode stability
+/// limit (at a^2 = 2 the chain still blew up: neighbouring links couple, and Lambda lags a
+/// step). The price, as with implicit Euler on stiff springs: on a body where beta > 0 every
+/// motion the geometric stiffness carries is damped at ~beta (Omega h)^2 per step, including
+/// slow ones (a chain's swing lives in the constraints' rotation, so it is such a motion).
+/// Distance rows are left out: their geometric stiffness couples the two bodies' translations.
+void applyJointGeometricStiffness(std::span<SolverBody> bodies, std::span<const JointRow> rows,
+                                  Real h, std::vector<Mat3>& stiffness);
+
+/// The direct block of the joints (SolverSettings::jointSolve Direct): every active ball
+/// joint's three point rows as rigid rows (zero softness) of a SpringBlockSolver, solved
+/// exactly together in each sweep. PGS carries a load through a chain at ~N^2 sweeps, and a
+/// 100:1 load under 20 links stretched the joints by ~10 mm with 10 + 10 sweeps (0.1 mm with
+/// 200 + 200). Hinge, weld and slider blocks, limits and motors stay in PGS. Fills `block`
+/// (three rows per such joint, in joint order, warm-started from linearImpulse, which
+/// prepareJointRows has already applied) and marks the joints blockSolved. Call after
+/// prepareJointRows.
+void buildJointBlockRows(std::span<const SolverBody> bodies, std::span<JointRow> rows,
+                         std::vector<SpringRow>& block);
+
+/// Before each block solve: the rows' targets from the curvature drift at the current
+/// velocities (and -beta C / h under Baumgarte, `bias` = beta).
+void updateJointBlockTargets(std::span<const SolverBody> bodies, std::span<JointRow> rows,
+                             std::span<SpringRow> block, Real bias, Real inverseH);
+
+/// After the solve: the block's impulses back into the joints' linearImpulse.
+void storeJointBlockImpulses(std::span<JointRow> rows, std::span<const SpringRow> block);
 
 /// What a joint's impulses of the last solve mean as a reaction on B over a step of length h:
 /// force (N, world) and torque about the anchor (N m, world).
