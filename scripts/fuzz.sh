@@ -33,7 +33,9 @@ for target in scene_loader_fuzz narrowphase_fuzz; do
   mkdir -p "$work"
   echo "=== fuzz: $target for ${seconds} s"
   # -rss_limit_mb: a scene may legally ask for many bodies; the target builds only small ones.
-  if ! "$build/fuzz/$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+  # -timeout: a unit this slow is a hang (libccd's EPA once looped for ever). 30 s, not 10: a
+  # legal but crowded scene can take seconds under the sanitizers on a loaded machine.
+  if ! "$build/fuzz/$target" -max_total_time="$seconds" -timeout=30 -rss_limit_mb=2048 \
       -print_final_stats=1 -artifact_prefix="$build/$target-" "$work" "$seeds" \
       2>"$build/$target.log"; then
     status=1

@@ -300,8 +300,14 @@ int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, s
         s.warnings.push_back(describe(w));
     if (world.droppedWarnings() > 0)
         s.warnings.push_back(std::to_string(world.droppedWarnings()) + " more warnings not kept");
-    for (const std::string& w : s.warnings)
-        err << "tumble: warning: " << w << "\n";
+    // A crowded scene can raise dozens; the summary keeps them all.
+    constexpr std::size_t kPrinted = 5;
+    for (std::size_t i = 0; i < s.warnings.size() && i < kPrinted; ++i)
+        err << "tumble: warning: " << s.warnings[i] << "\n";
+    if (s.warnings.size() > kPrinted) {
+        err << "tumble: warning: ... and " << s.warnings.size() - kPrinted
+            << " more (all in the --summary JSON)\n";
+    }
     if (s.status != "ok" && drawing)
         picture.addPanel(world, built.shapes, built.springs, built.joints, world.time());
     if (summaryFile)
