@@ -193,10 +193,9 @@ public:
     std::span<const Contact> contacts() const;
 
     // --- queries (through the broadphase; see query.h) ----------------------------------------
-    // The broadphase is brought up to date by step(), so queries find shapes where its boxes put
-    // them at the last step: a shape created since then is not found until the next step, and a
-    // body moved through the API is found near its old place (its fat box, then the exact test
-    // at its current pose).
+    // The broadphase is brought up to date by step(), so queries see its boxes as of the last
+    // step: a shape created since then is not found until the next step, and one moved through
+    // the API may be missed at its new place until then.
     /// The first shape hit by the segment origin + t translation, t in [0, 1].
     std::optional<RayCastHit> castRayClosest(const Vec3& origin, const Vec3& translation,
                                              const QueryFilter& filter = {}) const;
