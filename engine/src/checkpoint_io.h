@@ -139,8 +139,12 @@ void field(Ar& a, std::array<T, N>& array) {
 template <typename Ar, typename T, typename Each>
 void sequence(Ar& a, std::vector<T>& vector, Each&& each) {
     const std::size_t n = a.count(vector.size());
-    if constexpr (Ar::kReading)
-        vector.assign(n, T{});
+    if constexpr (Ar::kReading) {
+        // Not assign(n, T{}): an Eigen vector's T{} is uninitialised, and copying it is what
+        // GCC 12 flags at -O1 (the ASan build). Every element is read just below.
+        vector.clear();
+        vector.resize(n);
+    }
     for (T& element : vector)
         each(element);
 }
