@@ -142,11 +142,14 @@ def fig11(out, png):
         styles = {"tumble": "tab:blue", "bullet": "tab:red", "ode": "tab:green",
                   "box2d": "tab:purple"}
         for engine, color in styles.items():
-            pts = sorted((float(r["cubes"]), float(r["wall_s_per_s"])) for r in bench
-                         if r["engine"] == engine)
+            pts = sorted((float(r["cubes"]), float(r["wall_s_per_s"]), float(r["collapsed_at_s"]))
+                         for r in bench if r["engine"] == engine)
             if pts:
                 ax.plot([p[0] for p in pts], [p[1] for p in pts], "^--", color=color, alpha=0.8,
                         label=f"{engine}, tumble-bench run")
+                fell = [p for p in pts if p[2] >= 0]
+                ax.plot([p[0] for p in fell], [p[1] for p in fell], "x", color="k", ms=9,
+                        label="collapsed during the run" if engine == "ode" else None)
     ax.set_xlabel("cubes in the column N")
     ax.set_ylabel("wall time per simulated second (s)")
     ax.set_title("Fig. 11: stack cost against N (h = 1/60, 10 iterations)")

@@ -44,10 +44,17 @@ void writeMarkdownTable(std::ofstream& out, const std::vector<TableRow>& table) 
     }
 }
 
-// Fig. 11's peers: the stack rows ("stack-N", engine, "ran", median wall s per sim s, ...) of
-// tumble-bench's CSV, as cubes -> engine -> seconds. Empty when the file is not there.
-std::map<int, std::map<std::string, double>> benchStacks(const std::string& path) {
-    std::map<int, std::map<std::string, double>> rows;
+// One engine's stack row in tumble-bench's CSV.
+struct BenchStack {
+    double wall = 0;        ///< median wall s per simulated s
+    double collapsed = -1;  ///< when the stack collapsed (s), -1 never
+};
+
+// Fig. 11's peers: the stack rows ("stack-N", engine, "ran", median wall s per sim s, ...,
+// collapsed_at_s in column 11) of tumble-bench's CSV, as cubes -> engine -> row. Empty when the
+// file is not there.
+std::map<int, std::map<std::string, BenchStack>> benchStacks(const std::string& path) {
+    std::map<int, std::map<std::string, BenchStack>> rows;
     std::ifstream in(path);
     std::string line;
     std::getline(in, line);  // header
@@ -56,9 +63,10 @@ std::map<int, std::map<std::string, double>> benchStacks(const std::string& path
         std::stringstream fields(line);
         for (std::string cell; std::getline(fields, cell, ',');)
             cells.push_back(cell);
-        if (cells.size() < 4 || cells[0].rfind("stack-", 0) != 0 || cells[2] != "ran")
+        if (cells.size() < 11 || cells[0].rfind("stack-", 0) != 0 || cells[2] != "ran")
             continue;
-        rows[std::atoi(cells[0].c_str() + 6)][cells[1]] = std::atof(cells[3].c_str());
+        rows[std::atoi(cells[0].c_str() + 6)][cells[1]] = {std::atof(cells[3].c_str()),
+                                                           std::atof(cells[10].c_str())};
     }
     return rows;
 }
@@ -73,12 +81,13 @@ void writeStackPeers(std::ofstream& out, const std::string& dir, const CaseResul
     out << "\nBeside the peers: the engines' columns are tumble-bench's (median wall s per "
            "simulated s, same scene, 5 s x 5 runs) from `bench/results/harness/tumble-bench.csv`, "
            "a separate run, committed with its machine in bench/README.md; its Tumble column "
-           "shows how far the two runs' machine load differed.\n\n"
+           "shows how far the two runs' machine load differed. A stack that fell was timed "
+           "falling.\n\n"
            "| cubes | tumble (this run) | tumble (bench) | bullet | ode | box2d |\n"
            "|---|---|---|---|---|---|\n";
     std::ofstream csv(dir + "/fig11_peers.csv");
     csv.precision(10);
-    csv << "cubes,engine,wall_s_per_s\n";
+    csv << "cubes,engine,wall_s_per_s,collapsed_at_s\n";
     for (const auto& [cubes, engines] : bench) {
         double here = -1;
         for (const TableRow& row : r.table) {
@@ -100,9 +109,14 @@ void writeStackPeers(std::ofstream& out, const std::string& dir, const CaseResul
                 out << " not run |";
                 continue;
             }
-            std::snprintf(cell, sizeof cell, " %.4g |", found->second);
-            out << cell;
-            csv << cubes << ',' << engine << ',' << found->second << '\n';
+            const BenchStack& b = found->second;
+            char text[64];
+            if (b.collapsed >= 0)
+                std::snprintf(text, sizeof text, " %.4g (fell at %.2g s) |", b.wall, b.collapsed);
+            else
+                std::snprintf(text, sizeof text, " %.4g |", b.wall);
+            out << text;
+            csv << cubes << ',' << engine << ',' << b.wall << ',' << b.collapsed << '\n';
         }
         out << '\n';
     }
