@@ -25,7 +25,7 @@
 // runs of 1 s) and the log-log slope of each against EA -- explicit should grow as sqrt(EA),
 // implicit stay flat. Timing is a benchmark here: reported, never checked. Checked: every run
 // stays finite. Reported beside the cost: how far the explicit and implicit free ends are apart
-// after 1 s (1.5-4.6 cm on a 7.8 cm swing: the struck string is nonlinear, and the implicit step
+// after 1 s (0.7-4.6 cm on a 7.8 cm swing: the struck string is nonlinear, and the implicit step
 // at h = 1e-3 damps its fast modes; the flat cost is not free accuracy).
 
 #include <Eigen/Eigenvalues>
