@@ -26,6 +26,9 @@ struct CaseResult {
     std::vector<Metric> tolerances;
     std::vector<std::string> failures;  ///< one line per broken claim; empty means passed
     std::vector<TableRow> table;
+    /// Long series for the report's figures only (a transient, a spectrum): written by --report
+    /// as <case>-<name>.csv, never printed or put in report.md.
+    std::vector<std::pair<std::string, std::vector<TableRow>>> series;
 
     bool passed() const { return failures.empty(); }
     void metric(const std::string& name, double value) { metrics.emplace_back(name, value); }
@@ -63,6 +66,9 @@ ValidationCase jointChainCase();
 ValidationCase fiveBodyPendulumCase();
 ValidationCase motorCase();
 ValidationCase pdArmCase();
+ValidationCase stringCase();
+ValidationCase stringCostCase();
+ValidationCase stackCostCase();
 
 /// Every case, in the order the runner lists them.
 inline std::vector<ValidationCase> allCases() {
@@ -72,7 +78,8 @@ inline std::vector<ValidationCase> allCases() {
             tableCase(),      tunnelCase(),       springStabilityCase(),
             tautStringCase(), hangingChainCase(), stiffNetCase(),
             pendulumCase(),   jointChainCase(),   fiveBodyPendulumCase(),
-            motorCase(),      pdArmCase()};
+            motorCase(),      pdArmCase(),        stringCase(),
+            stringCostCase(), stackCostCase()};
 }
 
 /// Least-squares slope of log(y) against log(x): the order of convergence.

@@ -66,7 +66,8 @@ int main(int argc, char** argv) {
     std::string reportDir;
     app.add_option("--report", reportDir,
                    "Also write report.md, each table as CSV and the study's figures as PNG to "
-                   "this directory (default cases: oscillator bounce)");
+                   "this directory (default cases: oscillator bounce string string-cost "
+                   "stack-cost)");
     CLI11_PARSE(app, argc, argv);
 
     const std::vector<ValidationCase> cases = tumble::validation::allCases();
@@ -76,7 +77,8 @@ int main(int argc, char** argv) {
         return 0;
     }
     if (names.empty() && !reportDir.empty())
-        names = {"oscillator", "bounce"};  // the study's Fig. 4 and Fig. 5
+        // The study's Fig. 4, 5, 7, 10 and 11.
+        names = {"oscillator", "bounce", "string", "string-cost", "stack-cost"};
     std::vector<const ValidationCase*> selected;
     for (const auto& name : names) {
         const ValidationCase* found = nullptr;

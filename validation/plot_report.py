@@ -2,7 +2,12 @@
 """Draws the study's figures from the CSV tables tumble-validate --report DIR wrote:
 Fig. 4 (oscillator.csv: amplitude and period error of the undamped oscillator against omega h,
 beside the discrete theory of semi-implicit Euler) and Fig. 5 (bounce.csv: the first five apex
-heights against h, split impulse against Baumgarte). Needs python3-matplotlib.
+heights against h, split impulse against Baumgarte), Fig. 7 (string-transient.csv,
+string-spectrum.csv, string.csv: the struck hanging string's transient and spectrum with the
+chain's modes marked), Fig. 10 (string-cost.csv: cost per simulated second against EA, explicit
+at h = 0.9 / omega_e and implicit at fixed h) and Fig. 11 (stack-cost.csv, and fig11_peers.csv
+when tumble-bench's results are there: cost per simulated second against the number of cubes).
+Needs python3-matplotlib.
 
 usage: plot_report.py DIR
 """
@@ -64,12 +69,108 @@ def fig5(rows, png):
     fig.savefig(png, dpi=110)
 
 
+def fig7(out, png):
+    transient = read(os.path.join(out, "string-transient.csv"))
+    spectrum = read(os.path.join(out, "string-spectrum.csv"))
+    modes = read(os.path.join(out, "string.csv"))
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(8, 7))
+    t = [r["t"] for r in transient]
+    top.plot(t, [100 * r["x_node14_m"] for r in transient], lw=1, label="node 14 (struck)")
+    top.plot(t, [100 * r["x_end_m"] for r in transient], lw=1, label="node 29 (free end)")
+    top.set_xlabel("t (s)")
+    top.set_ylabel("transverse displacement x (cm)")
+    top.set_title("transient (explicit threads, h = 5e-4 s)")
+    top.grid(True, alpha=0.3)
+    top.legend(fontsize=8)
+    w = [r["omega"] for r in spectrum]
+    peak = max(max(r["node14"] for r in spectrum), max(r["end"] for r in spectrum))
+    bottom.semilogy(w, [r["node14"] / peak for r in spectrum], lw=1, label="node 14 (struck)")
+    bottom.semilogy(w, [r["end"] / peak for r in spectrum], lw=1, label="node 29 (free end)")
+    for i, m in enumerate(modes):
+        bottom.axvline(m["omega_lumped"], color="k", lw=0.8,
+                       label="lumped chain's modes (linearised)" if i == 0 else None)
+        bottom.axvline(m["omega_continuous"], color="tab:red", ls=":", lw=1,
+                       label="continuous chain: (j0,n / 2) sqrt(g / L)" if i == 0 else None)
+    bottom.set_xlim(0, max(w))
+    bottom.set_ylim(1e-5, 2)
+    bottom.set_xlabel("omega (rad/s)")
+    bottom.set_ylabel("|Hann-windowed DTFT| (normalised)")
+    bottom.set_title("spectrum of the whole record")
+    bottom.grid(True, which="both", alpha=0.3)
+    bottom.legend(fontsize=8, loc="upper right")
+    fig.suptitle("Fig. 7: hanging string of 30 masses, node 14 struck sideways at 2 m/s")
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+
+
+def fig10(out, png):
+    rows = read(os.path.join(out, "string-cost.csv"))
+    ea = [r["EA_N"] for r in rows]
+    fig, ax = plt.subplots(figsize=(6.5, 4.6))
+    ax.loglog(ea, [r["explicit_cpu_s_per_s"] for r in rows], "o-", color="tab:red",
+              label="explicit, h = 0.9 / omega_e (CPU)")
+    ax.loglog(ea, [r["explicit_wall_s_per_s"] for r in rows], "x", color="tab:red", alpha=0.6,
+              label="explicit (wall)")
+    h = rows[0]["implicit_h"]
+    ax.loglog(ea, [r["implicit_cpu_s_per_s"] for r in rows], "s-", color="tab:blue",
+              label=f"implicit, h = {h:g} s (CPU)")
+    ax.loglog(ea, [r["implicit_wall_s_per_s"] for r in rows], "x", color="tab:blue", alpha=0.6,
+              label="implicit (wall)")
+    anchor = rows[0]["explicit_cpu_s_per_s"]
+    ax.loglog(ea, [anchor * math.sqrt(x / ea[0]) for x in ea], "k--", lw=0.8,
+              label="~ sqrt(EA)")
+    ax.set_xlabel("EA (N)  [k = EA / 0.05 m per segment]")
+    ax.set_ylabel("time per simulated second (s)")
+    ax.set_title("Fig. 10: string cost against stiffness (30 masses)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+
+
+def fig11(out, png):
+    rows = read(os.path.join(out, "stack-cost.csv"))
+    n = [r["cubes"] for r in rows]
+    fig, ax = plt.subplots(figsize=(6.5, 4.6))
+    med = [r["wall_s_per_s"] for r in rows]
+    ax.errorbar(n, med, yerr=[[m - r["wall_min"] for m, r in zip(med, rows)],
+                              [r["wall_max"] - m for m, r in zip(med, rows)]],
+                fmt="o-", color="tab:blue", capsize=3, label="Tumble, this run (median, min-max)")
+    peers = os.path.join(out, "fig11_peers.csv")
+    if os.path.exists(peers):
+        bench = list(csv.DictReader(open(peers)))
+        styles = {"tumble": "tab:blue", "bullet": "tab:red", "ode": "tab:green",
+                  "box2d": "tab:purple"}
+        for engine, color in styles.items():
+            pts = sorted((float(r["cubes"]), float(r["wall_s_per_s"]), float(r["collapsed_at_s"]))
+                         for r in bench if r["engine"] == engine)
+            if pts:
+                ax.plot([p[0] for p in pts], [p[1] for p in pts], "^--", color=color, alpha=0.8,
+                        label=f"{engine}, tumble-bench run")
+                fell = [p for p in pts if p[2] >= 0]
+                ax.plot([p[0] for p in fell], [p[1] for p in fell], "x", color="k", ms=9,
+                        label="collapsed during the run" if engine == "ode" else None)
+    ax.set_xlabel("cubes in the column N")
+    ax.set_ylabel("wall time per simulated second (s)")
+    ax.set_title("Fig. 11: stack cost against N (h = 1/60, 10 iterations)")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+
+
 def main(out):
     for name, draw, png in (("oscillator", fig4, "fig4_oscillator.png"),
                             ("bounce", fig5, "fig5_bounce.png")):
         path = os.path.join(out, name + ".csv")
         if os.path.exists(path):
             draw(read(path), os.path.join(out, png))
+            print(f"wrote {os.path.join(out, png)}")
+    for name, draw, png in (("string-spectrum", fig7, "fig7_string.png"),
+                            ("string-cost", fig10, "fig10_string_cost.png"),
+                            ("stack-cost", fig11, "fig11_stack_cost.png")):
+        if os.path.exists(os.path.join(out, name + ".csv")):
+            draw(out, os.path.join(out, png))
             print(f"wrote {os.path.join(out, png)}")
 
 

@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <sstream>
 
 namespace tumble::validation {
 namespace {
@@ -42,6 +44,89 @@ void writeMarkdownTable(std::ofstream& out, const std::vector<TableRow>& table) 
     }
 }
 
+// One engine's stack row in tumble-bench's CSV.
+struct BenchStack {
+    double wall = 0;        ///< median wall s per simulated s
+    double collapsed = -1;  ///< when the stack collapsed (s), -1 never
+};
+
+// Fig. 11's peers: the stack rows ("stack-N", engine, "ran", median wall s per sim s, ...,
+// collapsed_at_s in column 11) of tumble-bench's CSV, as cubes -> engine -> row. Empty when the
+// file is not there.
+std::map<int, std::map<std::string, BenchStack>> benchStacks(const std::string& path) {
+    std::map<int, std::map<std::string, BenchStack>> rows;
+    std::ifstream in(path);
+    std::string line;
+    std::getline(in, line);  // header
+    while (std::getline(in, line)) {
+        std::vector<std::string> cells;
+        std::stringstream fields(line);
+        for (std::string cell; std::getline(fields, cell, ',');)
+            cells.push_back(cell);
+        if (cells.size() < 11 || cells[0].rfind("stack-", 0) != 0 || cells[2] != "ran")
+            continue;
+        rows[std::atoi(cells[0].c_str() + 6)][cells[1]] = {std::atof(cells[3].c_str()),
+                                                           std::atof(cells[10].c_str())};
+    }
+    return rows;
+}
+
+// Fig. 11 beside the peers: this run's Tumble column and tumble-bench's committed rows, as
+// Markdown in the report and as DIR/fig11_peers.csv (cubes, engine, wall s per sim s) for the plot.
+void writeStackPeers(std::ofstream& out, const std::string& dir, const CaseResult& r) {
+#ifdef TUMBLE_VALIDATE_BENCH_CSV
+    const auto bench = benchStacks(TUMBLE_VALIDATE_BENCH_CSV);
+    if (bench.empty())
+        return;
+    out << "\nBeside the peers: the engines' columns are tumble-bench's (median wall s per "
+           "simulated s, same scene, 5 s x 5 runs) from `bench/results/harness/tumble-bench.csv`, "
+           "a separate run, committed with its machine in bench/README.md; its Tumble column "
+           "shows how far the two runs' machine load differed. A stack that fell was timed "
+           "falling.\n\n"
+           "| cubes | tumble (this run) | tumble (bench) | bullet | ode | box2d |\n"
+           "|---|---|---|---|---|---|\n";
+    std::ofstream csv(dir + "/fig11_peers.csv");
+    csv.precision(10);
+    csv << "cubes,engine,wall_s_per_s,collapsed_at_s\n";
+    for (const auto& [cubes, engines] : bench) {
+        double here = -1;
+        for (const TableRow& row : r.table) {
+            if (row.values[0].second == cubes)
+                here = row.values[1].second;
+        }
+        char cell[32];
+        std::snprintf(cell, sizeof cell, "| %d |", cubes);
+        out << cell;
+        if (here >= 0) {
+            std::snprintf(cell, sizeof cell, " %.4g |", here);
+            out << cell;
+        } else {
+            out << " - |";
+        }
+        for (const char* engine : {"tumble", "bullet", "ode", "box2d"}) {
+            const auto found = engines.find(engine);
+            if (found == engines.end()) {
+                out << " not run |";
+                continue;
+            }
+            const BenchStack& b = found->second;
+            char text[64];
+            if (b.collapsed >= 0)
+                std::snprintf(text, sizeof text, " %.4g (fell at %.2g s) |", b.wall, b.collapsed);
+            else
+                std::snprintf(text, sizeof text, " %.4g |", b.wall);
+            out << text;
+            csv << cubes << ',' << engine << ',' << b.wall << ',' << b.collapsed << '\n';
+        }
+        out << '\n';
+    }
+#else
+    (void)out;
+    (void)dir;
+    (void)r;
+#endif
+}
+
 }  // namespace
 
 bool writeReport(const std::string& dir,
@@ -52,7 +137,11 @@ bool writeReport(const std::string& dir,
     if (error || !out)
         return false;
     out << "# Validation report\n\nFigures (when python3-matplotlib is installed): "
-           "[Fig. 4, oscillator](fig4_oscillator.png), [Fig. 5, bounce](fig5_bounce.png).\n";
+           "[Fig. 4, oscillator](fig4_oscillator.png), [Fig. 5, bounce](fig5_bounce.png), "
+           "[Fig. 7, string transient and spectrum](fig7_string.png), [Fig. 10, string cost "
+           "against stiffness](fig10_string_cost.png), [Fig. 11, stack cost against "
+           "cubes](fig11_stack_cost.png). Timings are one machine's, at its load then: "
+           "benchmarks, not claims.\n";
     for (const auto& [c, r] : results) {
         out << "\n## " << c->name << ": " << (r.passed() ? "passed" : "FAILED") << "\n\n"
             << c->claim << "\n\n";
@@ -62,11 +151,17 @@ bool writeReport(const std::string& dir,
             out << "- tolerance " << name << " = " << value << '\n';
         for (const std::string& failure : r.failures)
             out << "- FAIL: " << failure << '\n';
+        for (const auto& [name, rows] : r.series) {
+            if (!rows.empty())
+                writeCsv(dir + "/" + c->name + "-" + name + ".csv", rows);
+        }
         if (r.table.empty())
             continue;
         out << '\n';
         writeMarkdownTable(out, r.table);
         writeCsv(dir + "/" + c->name + ".csv", r.table);
+        if (c->name == "stack-cost")
+            writeStackPeers(out, dir, r);
     }
     out.close();
     std::printf("wrote %s/report.md\n", dir.c_str());

@@ -1,6 +1,8 @@
 #pragma once
 /// tumble-validate --report DIR: each case's table as CSV and Markdown, and the study's figures
-/// drawn from them by validation/plot_report.py (Fig. 4 from the oscillator, Fig. 5 from bounce).
+/// drawn from them by validation/plot_report.py (Fig. 4 from the oscillator, Fig. 5 from bounce,
+/// Fig. 7 from string, Fig. 10 from string-cost, Fig. 11 from stack-cost beside tumble-bench's
+/// committed stack timings of the peers).
 
 #include <string>
 #include <utility>
