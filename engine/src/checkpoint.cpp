@@ -48,7 +48,7 @@ template <typename Ar>
 void field(Ar& a, SolverSettings& x) {
     fields(a, x.iterations, x.relaxIterations, x.tolerance, x.relaxation, x.friction,
            x.stabilisation, x.baumgarte, x.splitImpulseFactor, x.slop, x.restitutionThreshold,
-           x.warmStart, x.springSolve, x.projectSprings);
+           x.warmStart, x.springSolve, x.projectSprings, x.jointGeometricStiffness, x.jointSolve);
 }
 template <typename Ar>
 void field(Ar& a, WorldDef& x) {
