@@ -7,6 +7,7 @@ string-spectrum.csv, string.csv: the struck hanging string's transient and spect
 chain's modes marked), Fig. 10 (string-cost.csv: cost per simulated second against EA, explicit
 at h = 0.9 / omega_e and implicit at fixed h) and Fig. 11 (stack-cost.csv, and fig11_peers.csv
 when tumble-bench's results are there: cost per simulated second against the number of cubes).
+Fig. 7 and Fig. 10 add the peers' string from string-peers-{transient,cost}.csv when present.
 Needs python3-matplotlib.
 
 usage: plot_report.py DIR
@@ -69,6 +70,30 @@ def fig5(rows, png):
     fig.savefig(png, dpi=110)
 
 
+def read_peers(path):
+    """tumble-bench --string's rows by engine (the engine column kept as text); {} when absent."""
+    if not os.path.exists(path):
+        return {}
+    peers = {}
+    for row in csv.DictReader(open(path)):
+        engine = row.pop("engine")
+        peers.setdefault(engine, []).append({k: float(v) for k, v in row.items()})
+    return peers
+
+
+PEER_STYLE = {"bullet": ("tab:green", "--"), "ode": ("tab:purple", ":")}
+
+
+def windowed_spectrum(x, dt, omegas):
+    """|Hann-windowed DTFT| of x at each omega: validation/cases/lumped.h's windowedSpectrum."""
+    import numpy as np
+    x = np.asarray(x)
+    n = len(x)
+    w = 0.5 - 0.5 * np.cos(2 * np.pi * np.arange(n) / (n - 1))
+    k = np.arange(n)
+    return [abs(np.sum(w * x * np.exp(-1j * omega * dt * k))) for omega in omegas]
+
+
 def fig7(out, png):
     transient = read(os.path.join(out, "string-transient.csv"))
     spectrum = read(os.path.join(out, "string-spectrum.csv"))
@@ -77,6 +102,12 @@ def fig7(out, png):
     t = [r["t"] for r in transient]
     top.plot(t, [100 * r["x_node14_m"] for r in transient], lw=1, label="node 14 (struck)")
     top.plot(t, [100 * r["x_end_m"] for r in transient], lw=1, label="node 29 (free end)")
+    peers = read_peers(os.path.join(out, "string-peers-transient.csv"))
+    for engine, rows in peers.items():
+        color, style = PEER_STYLE.get(engine, ("tab:gray", "-."))
+        early = [r for r in rows if r["t"] <= max(t) + 1e-9]
+        top.plot([r["t"] for r in early], [100 * r["x_end_m"] for r in early], lw=0.9,
+                 color=color, ls=style, label=f"free end, {engine} (point masses, harness threads)")
     top.set_xlabel("t (s)")
     top.set_ylabel("transverse displacement x (cm)")
     top.set_title("transient (explicit threads, h = 5e-4 s)")
@@ -86,6 +117,14 @@ def fig7(out, png):
     peak = max(max(r["node14"] for r in spectrum), max(r["end"] for r in spectrum))
     bottom.semilogy(w, [r["node14"] / peak for r in spectrum], lw=1, label="node 14 (struck)")
     bottom.semilogy(w, [r["end"] / peak for r in spectrum], lw=1, label="node 29 (free end)")
+    tumble_dt = t[1] - t[0]
+    for engine, rows in peers.items():
+        color, style = PEER_STYLE.get(engine, ("tab:gray", "-."))
+        dt = rows[1]["t"] - rows[0]["t"]
+        # Scaled by dt / Tumble's dt: the DTFT sums samples, and the records are sampled apart.
+        spectrum = windowed_spectrum([r["x_end_m"] for r in rows], dt, w)
+        bottom.semilogy(w, [v * dt / tumble_dt / peak for v in spectrum], lw=0.9, color=color,
+                        ls=style, label=f"free end, {engine}")
     for i, m in enumerate(modes):
         bottom.axvline(m["omega_lumped"], color="k", lw=0.8,
                        label="lumped chain's modes (linearised)" if i == 0 else None)
@@ -116,6 +155,12 @@ def fig10(out, png):
               label=f"implicit, h = {h:g} s (CPU)")
     ax.loglog(ea, [r["implicit_wall_s_per_s"] for r in rows], "x", color="tab:blue", alpha=0.6,
               label="implicit (wall)")
+    peers = read_peers(os.path.join(out, "string-peers-cost.csv"))
+    for engine, points in peers.items():
+        color, style = PEER_STYLE.get(engine, ("tab:gray", "-."))
+        ax.loglog([p["EA_N"] for p in points], [p["cpu_s_per_s"] for p in points], "^",
+                  ls=style, color=color,
+                  label=f"{engine}: point masses, harness threads, h = 0.9 / omega_e (CPU)")
     anchor = rows[0]["explicit_cpu_s_per_s"]
     ax.loglog(ea, [anchor * math.sqrt(x / ea[0]) for x in ea], "k--", lw=0.8,
               label="~ sqrt(EA)")

@@ -127,6 +127,33 @@ void writeStackPeers(std::ofstream& out, const std::string& dir, const CaseResul
 #endif
 }
 
+// Fig. 7 and Fig. 10 beside the peers: tumble-bench --string's committed CSVs (the same string
+// as point masses under the harness's thread forces in Bullet and ODE), copied into DIR for the
+// plot and named in the report. Nothing when they are not there.
+void copyStringPeers(std::ofstream& out, const std::string& dir, const std::string& name) {
+#ifdef TUMBLE_VALIDATE_BENCH_CSV
+    const std::string file =
+        name == "string" ? "string-peers-transient.csv" : "string-peers-cost.csv";
+    const std::filesystem::path from =
+        std::filesystem::path(TUMBLE_VALIDATE_BENCH_CSV).parent_path() / file;
+    std::error_code error;
+    if (!std::filesystem::exists(from, error))
+        return;
+    std::filesystem::copy_file(from, std::filesystem::path(dir) / file,
+                               std::filesystem::copy_options::overwrite_existing, error);
+    if (error)
+        return;
+    out << "\nBeside the peers: `" << file
+        << "` (plotted) is `tumble-bench --string`'s committed run (bench/results/harness): the "
+           "same string in Bullet and ODE as point masses under the harness's tension-only "
+           "thread forces (Tumble's explicit law), a separate run; see bench/README.md.\n";
+#else
+    (void)out;
+    (void)dir;
+    (void)name;
+#endif
+}
+
 }  // namespace
 
 bool writeReport(const std::string& dir,
@@ -162,6 +189,8 @@ bool writeReport(const std::string& dir,
         writeCsv(dir + "/" + c->name + ".csv", r.table);
         if (c->name == "stack-cost")
             writeStackPeers(out, dir, r);
+        if (c->name == "string" || c->name == "string-cost")
+            copyStringPeers(out, dir, c->name);
     }
     out.close();
     std::printf("wrote %s/report.md\n", dir.c_str());

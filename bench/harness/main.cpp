@@ -4,7 +4,8 @@
 // metric (top drift, deepest penetration, energy error, whether and when it collapsed). Prints a
 // Markdown table and writes it as Markdown and CSV; --json writes the runs too.
 // --sweep DIR instead sweeps h and iterations for the speed-versus-error fronts (sweep.h);
-// --scaling times a step against the body count (scaling.h).
+// --scaling times a step against the body count (scaling.h); --string DIR runs the study's
+// hanging string in the peers (string_peers.h).
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -24,7 +25,9 @@
 #include "peer.h"
 #include "scaling.h"
 #include "scene.h"
+#include "string_peers.h"
 #include "sweep.h"
+#include "timing.h"
 
 namespace {
 
@@ -51,23 +54,10 @@ struct Row {
 // consecutive windows of `duration` each: the figures are the settled pile's.
 constexpr double kPileLanding = 1;  // (s): the top layer falls about 2.5 m
 
-// This thread's CPU time (s): beside the wall time, because the machine may be shared.
-double cpuNow() {
-    timespec t{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
 struct Timing {
     double wall;  // per simulated second (s/s)
     double cpu;
 };
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 Timing timedSteps(SceneRun& sceneRun, double start, double duration, bool measure) {
     const int steps = static_cast<int>(duration / sceneRun.timeStep() + 0.5);
@@ -220,6 +210,10 @@ int main(int argc, char** argv) {
                  "time a step against the body count instead (piles of 1k-10k bodies, nets of "
                  "100-10,000 nodes) and fit the exponent");
     app.add_flag("--scaling-50k", scaling.with50k, "add a pile of 50,000 bodies to --scaling");
+    StringPeerOptions string;
+    app.add_option("--string", string.outDir,
+                   "the study's hanging string in the peers instead (for Fig. 7 and Fig. 10 "
+                   "beside Tumble's): write string-peers-{transient,cost}.csv to this directory");
     std::vector<std::string> engines;
     app.add_option("--engine", engines,
                    "run only these engines (tumble, bullet, ode, box2d); also for --scaling");
@@ -228,6 +222,10 @@ int main(int argc, char** argv) {
         return runSweep(sweep);
     for (const std::string& skipped : skippedPeers())
         std::printf("skipped: %s\n", skipped.c_str());
+    if (!string.outDir.empty()) {
+        string.engines = engines;
+        return runStringPeers(string);
+    }
     if (scaling.enabled) {
         scaling.outPrefix = outPrefix;
         scaling.engines = engines;
