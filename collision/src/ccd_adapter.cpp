@@ -31,6 +31,9 @@ constexpr Real kRelativeGap = 1e-13;  ///< GJK stop: |v|^2 - v.w <= this |v|^2
 /// Cores closer than this (m) count as touching: their closest-point direction is no longer a
 /// trustworthy normal, so the full shapes go to EPA.
 constexpr Real kCoreTouch = 1e-9;
+/// A simplex face with |ab x ac|^2 below this times (longest edge)^4 -- the sine of its widest
+/// angle below 1e-10 -- has collinear vertices to within rounding: its normal is noise.
+constexpr Real kCollinear = 1e-20;
 /// libccd's EPA stops when a new support point gains less than this (m) on the nearest face.
 constexpr Real kEpaTolerance = 1e-10;
 constexpr Real kMprTolerance = 1e-10;
@@ -119,6 +122,20 @@ void closestOnTriangle(Simplex& s, int i, int j, int k) {
 /// plane separates the origin from the opposite vertex. Returns false when the origin is inside.
 bool closestOnTetrahedron(Simplex& s) {
     static constexpr int kFaces[4][4] = {{0, 1, 2, 3}, {0, 2, 3, 1}, {0, 3, 1, 2}, {1, 3, 2, 0}};
+    // Near convergence on a curved core (a cylinder's rim) the supports crowd together and the
+    // simplex becomes a sliver whose face normals are rounding noise: a sign test on such a
+    // face can call every face "inside" with the origin 0.2 m away. Two guards: a point inside
+    // lies within the tetrahedron's longest edge of every vertex, and a face whose vertices are
+    // collinear to within rounding decides nothing -- in either case every face is tested.
+    Real longestEdge2 = 0;
+    Real nearestVertex2 = std::numeric_limits<Real>::infinity();
+    for (int i = 0; i < 4; ++i) {
+        nearestVertex2 = std::min(nearestVertex2, s.vertices[i].w.squaredNorm());
+        for (int j = i + 1; j < 4; ++j)
+            longestEdge2 =
+                std::max(longestEdge2, (s.vertices[j].w - s.vertices[i].w).squaredNorm());
+    }
+    const bool mayEnclose = nearestVertex2 <= longestEdge2;
     Simplex best;
     Real bestDistance2 = std::numeric_limits<Real>::infinity();
     bool outsideAny = false;
@@ -127,8 +144,9 @@ bool closestOnTetrahedron(Simplex& s) {
         const Vec3 normal = (s.vertices[face[1]].w - a).cross(s.vertices[face[2]].w - a);
         const Real signOrigin = -normal.dot(a);
         const Real signOpposite = normal.dot(s.vertices[face[3]].w - a);
+        const bool decisive = normal.squaredNorm() > kCollinear * longestEdge2 * longestEdge2;
         // A flat tetrahedron (signOpposite == 0) cannot enclose anything: test every face.
-        if (signOrigin * signOpposite > 0 && signOpposite != 0)
+        if (mayEnclose && decisive && signOrigin * signOpposite > 0 && signOpposite != 0)
             continue;
         outsideAny = true;
         Simplex candidate = s;
