@@ -214,6 +214,9 @@ int main(int argc, char** argv) {
         ->check(CLI::PositiveNumber);
     app.add_option("--sweep-scene", sweep.scenes, "sweep only these: stack, pyramid, chain, net")
         ->check(CLI::IsMember({"stack", "pyramid", "chain", "net"}));
+    app.add_option("--sweep-repeats", sweep.repeats,
+                   "timed runs per sweep point, the fastest kept (the errors do not change)")
+        ->check(CLI::PositiveNumber);
     app.add_flag("!--no-plot", sweep.plot, "do not run the plotting script after the sweep");
     ScalingOptions scaling;
     app.add_flag("--scaling", scaling.enabled,

@@ -106,6 +106,19 @@ Point lumpedPoint(const std::string& scene, const std::string& engine, double h,
     return p;
 }
 
+// The fastest of `repeats` runs of the same point: the runs are deterministic (the same error
+// every time), only the machine's load changes their cost.
+template <class Run>
+Point fastest(int repeats, Run run) {
+    Point best = run();
+    for (int r = 1; r < repeats; ++r) {
+        const Point p = run();
+        if (p.wallPerSimulatedSecond < best.wallPerSimulatedSecond)
+            best = p;
+    }
+    return best;
+}
+
 bool threeD(const Peer& peer) {
     return !peer.create(SceneSettings{})->planar();
 }
@@ -137,7 +150,9 @@ int runSweep(const SweepOptions& options) {
         for (const Peer& peer : engines) {
             for (const double h : kTimeSteps) {
                 for (const int iterations : kIterations) {
-                    points.push_back(runCubes(peer, scene, h, iterations, options.duration));
+                    points.push_back(fastest(options.repeats, [&] {
+                        return runCubes(peer, scene, h, iterations, options.duration);
+                    }));
                     progress(points.back());
                 }
             }
@@ -166,9 +181,11 @@ int runSweep(const SweepOptions& options) {
                 continue;
             for (const double h : kTimeSteps) {
                 for (const int iterations : kIterations) {
-                    const Trajectory run = runChain(peer, h, iterations, options.duration);
-                    points.push_back(
-                        lumpedPoint("chain-30", peer.name, h, iterations, run, reference, true));
+                    points.push_back(fastest(options.repeats, [&] {
+                        const Trajectory run = runChain(peer, h, iterations, options.duration);
+                        return lumpedPoint("chain-30", peer.name, h, iterations, run, reference,
+                                           true);
+                    }));
                     progress(points.back());
                 }
             }
@@ -209,9 +226,11 @@ int runSweep(const SweepOptions& options) {
                 continue;
             for (const double h : kTimeSteps) {
                 for (const int iterations : kIterations) {
-                    const Trajectory run = runNet(peer, scene, h, iterations, duration);
-                    points.push_back(
-                        lumpedPoint(scene.name, peer.name, h, iterations, run, reference, false));
+                    points.push_back(fastest(options.repeats, [&] {
+                        const Trajectory run = runNet(peer, scene, h, iterations, duration);
+                        return lumpedPoint(scene.name, peer.name, h, iterations, run, reference,
+                                           false);
+                    }));
                     progress(points.back());
                 }
             }
@@ -230,9 +249,11 @@ int runSweep(const SweepOptions& options) {
         "for the peers' chain and net, which have no constraints, iterations change nothing), "
         "engines: " +
         engineList + "; " + format("%g", options.duration) +
-        " s simulated per run (the net: at most 1.2 s, see its note), one timed run per point "
-        "(busy time of the steps over the "
-        "simulated time reached: a run that blew up stops there); the whole sweep took " +
+        " s simulated per run (the net: at most 1.2 s, see its note); cost: the busy time of the "
+        "steps over the simulated time reached (a run that blew up stops there), the fastest "
+        "of " +
+        std::to_string(options.repeats) +
+        " runs of each point (the errors are the same in each); the whole sweep took " +
         format("%.0f", wall) + " s of wall time.";
     const std::string csv = options.outDir + "/sweep.csv";
     const std::string md = options.outDir + "/pareto.md";

@@ -15,7 +15,9 @@ struct SweepOptions {
     int pyramidBase = 6;               ///< cubes in the pyramid's bottom row, >= 1
     std::vector<std::string> scenes;   ///< only these (stack, pyramid, chain, net); empty: all
     std::vector<std::string> engines;  ///< only these (tumble, bullet, ode, box2d); empty: all
-    bool plot = true;                  ///< run the plotting script when /usr/bin/python3 is there
+    int repeats =
+        3;  ///< timed runs per point, the fastest kept (the errors are deterministic), >= 1
+    bool plot = true;  ///< run the plotting script when /usr/bin/python3 is there
 };
 
 /// Runs the sweep, prints progress and the fronts; returns the process exit code.

@@ -75,7 +75,8 @@ void writeCostTable(std::ofstream& out, const std::vector<Point>& points, const 
     if (!std::isfinite(smallest))
         return;
     out << "\nLeast wall s per sim s to reach an error of at most E (--: no run of the grid "
-           "does):\n\n| E (m) |";
+           "does; a level that costs every engine what the one above did is left out):\n\n"
+           "| E (m) |";
     for (const std::string& e : engines)
         out << ' ' << e << " |";
     out << " cheapest |\n|---|";
@@ -84,22 +85,29 @@ void writeCostTable(std::ofstream& out, const std::vector<Point>& points, const 
     out << '\n';
     // Tumble against each peer over the levels both reach: how often Tumble is cheaper.
     std::map<std::string, std::pair<int, int>> tally;  // peer: (Tumble cheaper, both reach)
+    std::map<std::string, double> previous;
     const int top = static_cast<int>(std::ceil(std::log10(largest)));
     const int bottom = static_cast<int>(std::floor(std::log10(smallest)));
     for (int k = top; k >= bottom; --k) {
         const double level = std::pow(10.0, k);
-        out << "| 1e" << k << " |";
         std::string cheapest = "--";
         double least = INFINITY;
         std::map<std::string, double> cost;
         for (const std::string& e : engines) {
             cost[e] = costToReach(points, scene, e, level);
-            out << ' ' << number("%.3g", cost[e]) << " |";
             if (cost[e] < least) {
                 least = cost[e];
                 cheapest = e;
             }
         }
+        // A level no cheaper to reach for anyone than the one above adds nothing (a column
+        // that stays exactly aligned reaches every level at its first cost).
+        if (cost == previous)
+            continue;
+        previous = cost;
+        out << "| 1e" << k << " |";
+        for (const std::string& e : engines)
+            out << ' ' << number("%.3g", cost[e]) << " |";
         out << ' ' << cheapest << " |\n";
         for (const std::string& e : engines) {
             if (e != "tumble" && std::isfinite(cost[e]) && std::isfinite(cost["tumble"])) {
