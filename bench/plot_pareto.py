@@ -15,7 +15,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.transforms import blended_transform_factory  # noqa: E402
 
-COLOURS = {"tumble": "tab:blue", "bullet": "tab:red", "ode": "tab:green", "box2d": "tab:orange"}
+COLOURS = {"tumble": "tab:blue", "tumble-explicit": "tab:purple", "bullet": "tab:red", "ode": "tab:green", "box2d": "tab:orange"}
 FLOOR = 1e-16  # (m): errors at or below round-off are drawn here on the log axis
 
 

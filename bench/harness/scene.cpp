@@ -112,6 +112,7 @@ void SceneRun::buildPile() {
 void SceneRun::buildNet() {
     const int n = scene_.size;
     net_.n = n;
+    net_.explicitThreads = scene_.explicitThreads;
     const Real omega = scene_.omegaH / settings_.timeStep;
     net_.stiffness = scene_.stiffness > 0 ? scene_.stiffness : omega * omega * net_.nodeMass;
     for (int i = 0; i < n; ++i) {

@@ -23,6 +23,8 @@ struct Scene {
     /// Nets: the threads' stiffness k (N/m) when > 0, the same at every h (the sweep); then
     /// omegaH is ignored.
     Real stiffness = 0;
+    /// Nets: an engine with its own springs makes them explicit (NetSpec::explicitThreads).
+    bool explicitThreads = false;
 
     bool planar() const { return kind == SceneKind::Stack || kind == SceneKind::Pyramid; }
 };

@@ -161,6 +161,21 @@ int runSweep(const SweepOptions& options) {
 
     const std::string skippedNote =
         planarSkipped.empty() ? "" : " Not run in " + planarSkipped + ": planar engine.";
+    // The chain and the net in every 3-D engine, and in Tumble once more with explicit springs:
+    // the peers' scheme in Tumble, which separates the scheme's accuracy from the engine's cost.
+    struct Lumped {
+        Peer peer;
+        std::string label;
+        bool explicitSprings;
+    };
+    std::vector<Lumped> lumped;
+    for (const Peer& peer : engines) {
+        if (!threeD(peer))
+            continue;
+        lumped.push_back({peer, peer.name, false});
+        if (peer.name == "tumble")
+            lumped.push_back({peer, "tumble-explicit", true});
+    }
     if (wanted(options, "chain")) {
         const Reference reference =
             converge(chainModel(), kChainReferenceStep, options.duration, true);
@@ -168,7 +183,8 @@ int runSweep(const SweepOptions& options) {
             {"chain-30",
              "validation/cases/hanging_chain.cpp's chain: 30 beads of 1/30 kg on 1 m, EA = 1e6 "
              "N (k = 3e7 N/m per segment, omega_e = 3e4 rad/s), hung from a fixed point, started "
-             "1 mm off in its first three modes. Tumble: implicit springs; peers: point masses "
+             "1 mm off in its first three modes. Tumble: implicit springs (tumble-explicit: "
+             "explicit); peers: point masses "
              "and the harness's explicit spring forces (stable only for h below ~1/omega_e = "
              "3e-5 s). Error: the largest sideways (x) difference of any bead from the "
              "reference, sampled every 0.1 s. Reference: the harness's velocity-Verlet "
@@ -176,14 +192,13 @@ int runSweep(const SweepOptions& options) {
                  format("%.3g", kChainReferenceStep) +
                  " s; its difference from the run at twice that step: " +
                  format("%.2g", reference.selfError) + " m." + skippedNote});
-        for (const Peer& peer : engines) {
-            if (!threeD(peer))
-                continue;
+        for (const Lumped& engine : lumped) {
             for (const double h : kTimeSteps) {
                 for (const int iterations : kIterations) {
                     points.push_back(fastest(options.repeats, [&] {
-                        const Trajectory run = runChain(peer, h, iterations, options.duration);
-                        return lumpedPoint("chain-30", peer.name, h, iterations, run, reference,
+                        const Trajectory run = runChain(engine.peer, h, iterations,
+                                                        options.duration, engine.explicitSprings);
+                        return lumpedPoint("chain-30", engine.label, h, iterations, run, reference,
                                            true);
                     }));
                     progress(points.back());
@@ -208,7 +223,8 @@ int runSweep(const SweepOptions& options) {
              "A 10 x 10 net of 0.01 kg nodes, 5 cm mesh, tension-only threads of k = " +
                  format("%.0f", kNetStiffness) +
                  " N/m (omega_e = 200 rad/s), thrown open in free space at 0.5 m/s at the "
-                 "corners (scene.h). Tumble: implicit threads; peers: point masses and the "
+                 "corners (scene.h). Tumble: implicit threads (tumble-explicit: explicit); peers: "
+                 "point masses and the "
                  "harness's explicit thread forces (stable for h below ~1/omega_e: 1/240 and "
                  "below). Error: the largest position difference of any node from the "
                  "reference, sampled every 0.1 s. Reference: the harness's velocity-Verlet "
@@ -221,14 +237,15 @@ int runSweep(const SweepOptions& options) {
                  " s: the net's second catch, at about 1.35 s, after it has flown through "
                  "itself, amplifies every difference, hence the shorter window)." +
                  skippedNote});
-        for (const Peer& peer : engines) {
-            if (!threeD(peer))
-                continue;
+        for (const Lumped& engine : lumped) {
+            Scene variant = scene;
+            variant.explicitThreads = engine.explicitSprings;
             for (const double h : kTimeSteps) {
                 for (const int iterations : kIterations) {
                     points.push_back(fastest(options.repeats, [&] {
-                        const Trajectory run = runNet(peer, scene, h, iterations, duration);
-                        return lumpedPoint(scene.name, peer.name, h, iterations, run, reference,
+                        const Trajectory run =
+                            runNet(engine.peer, variant, h, iterations, duration);
+                        return lumpedPoint(scene.name, engine.label, h, iterations, run, reference,
                                            false);
                     }));
                     progress(points.back());
@@ -246,7 +263,9 @@ int runSweep(const SweepOptions& options) {
     const std::string preamble =
         "h in {1/30, 1/60, 1/120, 1/240, 1/480, 1/1000, 1/2000} s, iterations in {4, 10, 20, "
         "50, 100} (Tumble: as many split-impulse sweeps again; Bullet: its split-impulse pass; "
-        "for the peers' chain and net, which have no constraints, iterations change nothing), "
+        "for the chain and net, which have no constraints, iterations change nothing: Tumble "
+        "solves its spring rows directly); tumble-explicit: Tumble with explicit springs, chain "
+        "and net only; "
         "engines: " +
         engineList + "; " + format("%g", options.duration) +
         " s simulated per run (the net: at most 1.2 s, see its note); cost: the busy time of the "

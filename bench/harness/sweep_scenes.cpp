@@ -163,7 +163,8 @@ Trajectory integrateReference(const MassSpringModel& model, double h, double dur
     return run;
 }
 
-Trajectory runChain(const Peer& peer, double h, int iterations, double duration) {
+Trajectory runChain(const Peer& peer, double h, int iterations, double duration,
+                    bool explicitSprings) {
     const MassSpringModel model = chainModel();
     const std::size_t n = model.position.size();
     const int steps = stepsFor(duration, h);
@@ -183,7 +184,8 @@ Trajectory runChain(const Peer& peer, double h, int iterations, double duration)
             beads.push_back(validation::addPointMass(world, p, model.mass));
         for (const MassSpringModel::Thread& t : model.threads) {
             SpringDef spring;
-            spring.formulation = SpringFormulation::Implicit;
+            spring.formulation =
+                explicitSprings ? SpringFormulation::Explicit : SpringFormulation::Implicit;
             spring.restLength = t.restLength;
             spring.stiffness = t.stiffness;
             spring.bodyA = beads[static_cast<std::size_t>(t.a)];

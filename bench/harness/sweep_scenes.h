@@ -81,9 +81,10 @@ struct Trajectory {
 /// The model by velocity Verlet with step h (s), untimed.
 Trajectory integrateReference(const MassSpringModel& model, double h, double duration);
 
-/// The chain: in Tumble with its implicit springs (as the validation case), in a peer as point
-/// masses pulled by the harness's explicit forces.
-Trajectory runChain(const Peer& peer, double h, int iterations, double duration);
+/// The chain: in Tumble with its implicit springs (as the validation case; explicit ones when
+/// `explicitSprings`), in a peer as point masses pulled by the harness's explicit forces.
+Trajectory runChain(const Peer& peer, double h, int iterations, double duration,
+                    bool explicitSprings = false);
 
 /// scene.cpp's net (Tumble: implicit tension-only threads; peers: explicit, the harness's).
 Trajectory runNet(const Peer& peer, const Scene& scene, double h, int iterations, double duration);
