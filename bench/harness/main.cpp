@@ -202,8 +202,11 @@ int main(int argc, char** argv) {
         ->check(CLI::PositiveNumber);
     app.add_option("--sweep-pyramid", sweep.pyramidBase, "base of the sweep's pyramid")
         ->check(CLI::PositiveNumber);
-    app.add_option("--sweep-scene", sweep.scenes, "sweep only these: stack, pyramid, chain")
-        ->check(CLI::IsMember({"stack", "pyramid", "chain"}));
+    app.add_option("--sweep-scene", sweep.scenes, "sweep only these: stack, pyramid, chain, net")
+        ->check(CLI::IsMember({"stack", "pyramid", "chain", "net"}));
+    app.add_option("--sweep-repeats", sweep.repeats,
+                   "timed runs per sweep point, the fastest kept (the errors do not change)")
+        ->check(CLI::PositiveNumber);
     app.add_flag("!--no-plot", sweep.plot, "do not run the plotting script after the sweep");
     ScalingOptions scaling;
     app.add_flag("--scaling", scaling.enabled,
@@ -218,8 +221,10 @@ int main(int argc, char** argv) {
     app.add_option("--engine", engines,
                    "run only these engines (tumble, bullet, ode, box2d); also for --scaling");
     CLI11_PARSE(app, argc, argv);
-    if (!sweep.outDir.empty())
+    if (!sweep.outDir.empty()) {
+        sweep.engines = engines;
         return runSweep(sweep);
+    }
     for (const std::string& skipped : skippedPeers())
         std::printf("skipped: %s\n", skipped.c_str());
     if (!string.outDir.empty()) {

@@ -65,6 +65,9 @@ struct NetSpec {
     Real stiffness = 9;       ///< k per thread (N/m)
     Real spreadSpeed = 0.5;   ///< (m/s)
     Real nodeRadius = 0.005;  ///< inertia only: the nodes do not collide (m)
+    /// Engines with their own springs (Tumble): explicit threads, the peers' scheme, instead of
+    /// their default (Tumble: implicit).
+    bool explicitThreads = false;
 };
 
 class PeerWorld {

@@ -112,8 +112,9 @@ void SceneRun::buildPile() {
 void SceneRun::buildNet() {
     const int n = scene_.size;
     net_.n = n;
+    net_.explicitThreads = scene_.explicitThreads;
     const Real omega = scene_.omegaH / settings_.timeStep;
-    net_.stiffness = omega * omega * net_.nodeMass;
+    net_.stiffness = scene_.stiffness > 0 ? scene_.stiffness : omega * omega * net_.nodeMass;
     for (int i = 0; i < n; ++i) {
         for (int j = 0; j < n; ++j) {
             if (j + 1 < n)

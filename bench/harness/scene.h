@@ -20,6 +20,11 @@ struct Scene {
     SceneKind kind = SceneKind::Stack;
     /// Nets: the threads' stiffness as omega_e h, omega_e = sqrt(k / node mass).
     Real omegaH = 0.5;
+    /// Nets: the threads' stiffness k (N/m) when > 0, the same at every h (the sweep); then
+    /// omegaH is ignored.
+    Real stiffness = 0;
+    /// Nets: an engine with its own springs makes them explicit (NetSpec::explicitThreads).
+    bool explicitThreads = false;
 
     bool planar() const { return kind == SceneKind::Stack || kind == SceneKind::Pyramid; }
 };
@@ -56,6 +61,8 @@ public:
     /// Updates the metrics after a step, at simulated time `time` (s). Not timed.
     void measure(double time);
     const Metrics& metrics() const { return metrics_; }
+    /// A body's position (m): the cubes in build order, the net's nodes row-major.
+    Vec3 position(int body) const { return world_->position(body); }
     Real timeStep() const { return settings_.timeStep; }
 
 private:

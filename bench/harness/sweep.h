@@ -9,12 +9,15 @@
 namespace tumble::bench {
 
 struct SweepOptions {
-    std::string outDir;               ///< where sweep.csv, pareto.md and pareto.png go (created)
-    double duration = 2;              ///< simulated seconds per run, > 0
-    int stackSize = 10;               ///< cubes in the column, >= 1
-    int pyramidBase = 6;              ///< cubes in the pyramid's bottom row, >= 1
-    std::vector<std::string> scenes;  ///< only these (stack, pyramid, chain); empty: all
-    bool plot = true;                 ///< run the plotting script when /usr/bin/python3 is there
+    std::string outDir;                ///< where sweep.csv, pareto.md and pareto.png go (created)
+    double duration = 2;               ///< simulated seconds per run, > 0
+    int stackSize = 10;                ///< cubes in the column, >= 1
+    int pyramidBase = 6;               ///< cubes in the pyramid's bottom row, >= 1
+    std::vector<std::string> scenes;   ///< only these (stack, pyramid, chain, net); empty: all
+    std::vector<std::string> engines;  ///< only these (tumble, bullet, ode, box2d); empty: all
+    int repeats =
+        3;  ///< timed runs per point, the fastest kept (the errors are deterministic), >= 1
+    bool plot = true;  ///< run the plotting script when /usr/bin/python3 is there
 };
 
 /// Runs the sweep, prints progress and the fronts; returns the process exit code.

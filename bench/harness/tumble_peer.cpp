@@ -45,7 +45,8 @@ public:
         net.node.radius = spec.nodeRadius;
         net.thread.axialRigidity = spec.stiffness * spec.mesh;  // k = E A / L0
         net.thread.tensionOnly = true;
-        net.thread.formulation = SpringFormulation::Implicit;
+        net.thread.formulation =
+            spec.explicitThreads ? SpringFormulation::Explicit : SpringFormulation::Implicit;
         net.spreadSpeed = spec.spreadSpeed;
         const Lumped lumped = createNet(world_, net);
         const int first = static_cast<int>(bodies_.size());
