@@ -234,6 +234,7 @@ int main(int argc, char** argv) {
     if (scaling.enabled) {
         scaling.outPrefix = outPrefix;
         scaling.engines = engines;
+        scaling.kinds = only;  // --scene pile / net
         return runScaling(scaling);
     }
 

@@ -84,6 +84,13 @@ double fitExponent(const std::vector<double>& x, const std::vector<double>& y) {
 }
 
 int runScaling(const ScalingOptions& options) {
+    for (const std::string& kind : options.kinds) {
+        if (kind != "pile" && kind != "net") {
+            std::fprintf(stderr, "--scaling --scene %s: the scaling study has only pile and net\n",
+                         kind.c_str());
+            return 2;
+        }
+    }
     std::vector<int> piles = {1000, 2000, 5000, 10000};
     if (options.with50k)
         piles.push_back(50000);
@@ -97,6 +104,10 @@ int runScaling(const ScalingOptions& options) {
                                                   peer.name) == options.engines.end())
             continue;
         for (const bool pile : {true, false}) {
+            const std::string kind = pile ? "pile" : "net";
+            if (!options.kinds.empty() &&
+                std::find(options.kinds.begin(), options.kinds.end(), kind) == options.kinds.end())
+                continue;
             std::vector<double> counts, times;
             for (const int size : pile ? piles : netSides) {
                 const Scene scene =

@@ -12,6 +12,7 @@ struct ScalingOptions {
     bool enabled = false;
     bool with50k = false;              ///< add the 50,000-body pile (minutes per engine)
     std::vector<std::string> engines;  ///< only these; empty: every 3-D engine compiled in
+    std::vector<std::string> kinds;    ///< only these of "pile", "net"; empty: both
     std::string outPrefix;             ///< writes PREFIX-scaling.csv unless empty
 };
 
