@@ -273,8 +273,7 @@ int main(int argc, char** argv) {
         double tumbleMedian = std::numeric_limits<double>::quiet_NaN();
         double tumbleCpu = tumbleMedian;
         for (const Peer& peer : peers()) {
-            if (!engines.empty() &&
-                std::find(engines.begin(), engines.end(), peer.name) == engines.end())
+            if (!engineChosen(engines, peer.name))
                 continue;
             Row row = run(peer, scene, settings, seconds, runs);
             if (peer.name == "tumble") {

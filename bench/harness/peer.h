@@ -5,6 +5,7 @@
 /// its library was found. A peer that cannot build a scene says so (see `planar`, `addBody`,
 /// `addPointMass`), and the harness reports the scene as skipped for it.
 
+#include <algorithm>
 #include <memory>
 #include <numbers>
 #include <string>
@@ -130,6 +131,11 @@ inline std::vector<Peer> peers() {
     list.push_back({"box2d", &createBox2d});
 #endif
     return list;
+}
+
+/// Is engine `name` among `chosen` (the --engine filter)? An empty filter chooses every engine.
+inline bool engineChosen(const std::vector<std::string>& chosen, const std::string& name) {
+    return chosen.empty() || std::find(chosen.begin(), chosen.end(), name) != chosen.end();
 }
 
 /// The peers this build was configured without, for the report.

@@ -100,8 +100,7 @@ int runScaling(const ScalingOptions& options) {
     std::printf("| engine | scene | count | ms per step: median [q1, q3] |\n|---|---|---|---|\n");
     std::vector<std::string> fits;
     for (const Peer& peer : peers()) {
-        if (!options.engines.empty() && std::find(options.engines.begin(), options.engines.end(),
-                                                  peer.name) == options.engines.end())
+        if (!engineChosen(options.engines, peer.name))
             continue;
         for (const bool pile : {true, false}) {
             const std::string kind = pile ? "pile" : "net";

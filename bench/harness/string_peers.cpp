@@ -85,11 +85,6 @@ private:
     std::vector<Vec3> force_;
 };
 
-bool wanted(const StringPeerOptions& options, const std::string& engine) {
-    return options.engines.empty() || std::find(options.engines.begin(), options.engines.end(),
-                                                engine) != options.engines.end();
-}
-
 // The study's strike at h = 5e-4; returns whether the record stayed finite.
 bool strike(const Peer& peer, double duration, std::ofstream& csv) {
     const double h = 5e-4;
@@ -158,7 +153,8 @@ int runStringPeers(const StringPeerOptions& options) {
     for (const Peer& peer : peers()) {
         // Tumble's own string (its thread elements, not these forces) is tumble-validate's;
         // Box2D is planar.
-        if (peer.name == "tumble" || peer.name == "box2d" || !wanted(options, peer.name))
+        if (peer.name == "tumble" || peer.name == "box2d" ||
+            !engineChosen(options.engines, peer.name))
             continue;
         ++ran;
         if (!strike(peer, options.duration, transient)) {

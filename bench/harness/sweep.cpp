@@ -62,8 +62,7 @@ bool wanted(const SweepOptions& options, const std::string& scene) {
 std::vector<Peer> enginesFor(const SweepOptions& options) {
     std::vector<Peer> chosen;
     for (Peer& peer : peers()) {
-        if (options.engines.empty() || std::find(options.engines.begin(), options.engines.end(),
-                                                 peer.name) != options.engines.end())
+        if (engineChosen(options.engines, peer.name))
             chosen.push_back(std::move(peer));
     }
     return chosen;
