@@ -18,6 +18,7 @@ NodeDef parseNode(JsonObject o, const Materials& materials) {
     node.mass = o.positive("mass", node.mass);
     node.radius = o.positive("radius", node.radius);
     node.collide = o.boolean("collide", node.collide);
+    node.fixedRotation = o.boolean("fixedRotation", node.fixedRotation);
     node.material = materialAt(o, "material", materials);
     node.filter = parseFilter(o);
     o.finish();

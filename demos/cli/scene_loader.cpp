@@ -152,6 +152,7 @@ BodySpec parseBody(const Json& value, const std::string& path, std::size_t index
     b.def.gravityScale = o.number("gravityScale", 1);
     b.def.allowSleep = o.boolean("allowSleep", true);
     b.def.awake = o.boolean("awake", true);
+    b.def.fixedRotation = o.boolean("fixedRotation", false);
     if (o.has("mass")) {
         b.mass = o.positive("mass", 1);
         if (b.def.type != BodyType::Dynamic)

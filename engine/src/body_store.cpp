@@ -38,6 +38,7 @@ BodyId BodyStore::add(const BodyDef& def) {
     bodyInfo.slot = slotIndex;
     bodyInfo.allowSleep = def.allowSleep;
     bodyInfo.builtAsleep = def.type == BodyType::Dynamic && !def.awake;
+    bodyInfo.fixedRotation = def.fixedRotation;
     info.push_back(bodyInfo);
     setMass(slot.dense, def.mass);
     previousMotion.back() = motion.back();
@@ -131,7 +132,9 @@ void BodyStore::setMass(std::uint32_t index, const MassProperties& mass) {
     bodyInertia.inverseMass = 1 / mass.mass;
     bodyInertia.localCenter = mass.localCenter;
     bodyInertia.inertiaLocal = mass.inertia;
-    bodyInertia.inverseInertiaLocal = mass.inertia.inverse();
+    // A translation-only body keeps its inertia for reporting but never turns.
+    bodyInertia.inverseInertiaLocal =
+        info[index].fixedRotation ? Mat3::Zero() : Mat3(mass.inertia.inverse());
 }
 
 }  // namespace tumble

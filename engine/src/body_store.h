@@ -58,6 +58,7 @@ struct BodyInfo {
     /// wake it, so a pile can be built asleep.
     bool builtAsleep = false;
     bool massFromShapes = false;  ///< mass properties come from the shapes
+    bool fixedRotation = false;   ///< BodyDef::fixedRotation: zero inverse inertia
 
     static constexpr std::uint32_t kNoShape = 0xFFFFFFFF;
     static constexpr std::uint32_t kNone = 0xFFFFFFFF;

@@ -77,7 +77,7 @@ template <typename Ar>
 void field(Ar& a, BodyInfo& x) {
     fields(a, x.type, x.linearDamping, x.angularDamping, x.gravityScale, x.mass, x.userData, x.slot,
            x.firstShape, x.firstContact, x.awakeIndex, x.sleepTime, x.allowSleep, x.pushed,
-           x.builtAsleep, x.massFromShapes);
+           x.builtAsleep, x.massFromShapes, x.fixedRotation);
 }
 
 template <typename Ar>

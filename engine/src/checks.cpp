@@ -87,6 +87,14 @@ void bodyDef(const BodyDef& def) {
         fail("BodyDef.gravityScale = ", def.gravityScale, " must be finite");
     if (def.type == BodyType::Dynamic)
         massProperties(def.mass, "BodyDef.mass");
+    if (def.fixedRotation) {
+        if (def.type != BodyType::Dynamic)
+            fail("BodyDef.fixedRotation: only a dynamic body can be translation-only");
+        if (!def.angularVelocity.isZero(0)) {
+            fail("BodyDef.fixedRotation with angularVelocity = ", format(def.angularVelocity),
+                 ": a translation-only body never rotates, it must be zero");
+        }
+    }
     if (!def.awake) {
         if (def.type != BodyType::Dynamic)
             fail("BodyDef.awake = false: only a dynamic body can be created asleep");

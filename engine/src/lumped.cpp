@@ -46,6 +46,7 @@ BodyId addNode(World& world, const NodeDef& node, Real mass, const Vec3& positio
     body.linearVelocity = velocity;
     body.mass.mass = mass;
     body.mass.inertia = Mat3::Identity() * (0.4 * mass * node.radius * node.radius);
+    body.fixedRotation = node.fixedRotation;
     const BodyId id = world.createBody(body);
     if (node.collide) {
         // Built whole: assigning the variant member of a default ShapeDef tripped GCC 12's

@@ -171,6 +171,11 @@ void World::setAngularVelocity(BodyId id, const Vec3& velocity) {
     checks::finiteVector(velocity, "setAngularVelocity velocity");
     if (impl_->bodies.info[index].type == BodyType::Static)
         fail("setAngularVelocity: the body is static");
+    if (impl_->bodies.info[index].fixedRotation && !velocity.isZero(0)) {
+        fail(
+            "setAngularVelocity: the body is translation-only (BodyDef::fixedRotation) and "
+            "cannot rotate; only a zero angular velocity is accepted");
+    }
     impl_->islands.push(impl_->bodies, impl_->contacts, index);
     impl_->bodies.motion[index].angularVelocity = velocity;
 }

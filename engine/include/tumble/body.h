@@ -43,6 +43,11 @@ struct BodyDef {
     /// Created awake (true) or asleep (false). A body created asleep is at rest until something
     /// touches or pushes it, so it must be dynamic, have zero velocities and allowSleep = true.
     bool awake = true;
+    /// Translation only: the body never rotates (its inverse inertia is zero, so no torque,
+    /// contact or joint turns it). A lumped node of a string or net is a point mass -- a thread
+    /// slides over a surface, it does not roll on it. Torques and angular impulses on it do
+    /// nothing. Dynamic bodies only, with a zero angularVelocity.
+    bool fixedRotation = false;
 };
 
 }  // namespace tumble

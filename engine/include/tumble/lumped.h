@@ -2,7 +2,8 @@
 /// Generators of lumped-mass strings and nets: point masses (small spheres) joined by
 /// spring-dampers (spring.h), as in the ESA study's throw-net model.
 ///
-/// A node is a dynamic body with the mass and inertia of a solid sphere of radius nodeRadius.
+/// A node is a dynamic body with the mass and inertia of a solid sphere of radius nodeRadius,
+/// translation-only unless NodeDef::fixedRotation is off.
 /// Whether nodes collide is a switch: when off they carry no shape and cost the broadphase
 /// nothing (a scene pays only for what it models).
 
@@ -27,9 +28,14 @@ struct ThreadDef {
 
 /// The nodes of a string or net.
 struct NodeDef {
-    Real mass = 0.01;          ///< of each node (kg), finite and > 0
-    Real radius = 0.005;       ///< sphere radius, for the inertia and collision (m), > 0
-    bool collide = false;      ///< give each node a sphere shape
+    Real mass = 0.01;      ///< of each node (kg), finite and > 0
+    Real radius = 0.005;   ///< sphere radius, for the inertia and collision (m), > 0
+    bool collide = false;  ///< give each node a sphere shape
+    /// Translation-only nodes (BodyDef::fixedRotation): a lumped node is a point mass, so a
+    /// thread slides over what it touches instead of rolling on it. Rotating nodes pick up spin
+    /// from contact friction on their tiny inertia that nothing damps, and a net resting on a
+    /// pile never falls asleep.
+    bool fixedRotation = true;
     Material material{};       ///< when colliding; density is ignored (mass is set above)
     CollisionFilter filter{};  ///< when colliding
 };
