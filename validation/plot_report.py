@@ -7,7 +7,8 @@ string-spectrum.csv, string.csv: the struck hanging string's transient and spect
 chain's modes marked), Fig. 10 (string-cost.csv: cost per simulated second against EA, explicit
 at h = 0.9 / omega_e and implicit at fixed h) and Fig. 11 (stack-cost.csv, and fig11_peers.csv
 when tumble-bench's results are there: cost per simulated second against the number of cubes).
-Fig. 7 and Fig. 10 add the peers' string from string-peers-{transient,cost}.csv when present.
+Fig. 7 and Fig. 10 add the peers' string from string-peers-{transient,cost}.csv when present,
+Fig. 4 and Fig. 5 the peers' oscillator and bounce from study-peers-{oscillator,bounce}.csv.
 Needs python3-matplotlib.
 
 usage: plot_report.py DIR
@@ -27,19 +28,27 @@ def read(path):
     return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(open(path))]
 
 
-def fig4(rows, png):
+def fig4(rows, png, out):
     stable = [r for r in rows if r["omega_h"] < 2 and math.isfinite(r["period_err"])]
     wh = [r["omega_h"] for r in stable]
     theory = [0.02 * i for i in range(1, 100)]  # omega h in (0, 2)
     fig, ax = plt.subplots(figsize=(6, 4.4))
     ax.loglog(wh, [abs(r["ampl_err"]) for r in stable], "o", color="tab:blue",
-              label="|amplitude error|, measured")
+              label="|amplitude error|, Tumble")
     ax.loglog(wh, [abs(r["period_err"]) for r in stable], "s", color="tab:red",
-              label="|period error|, measured")
+              label="|period error|, Tumble")
     ax.loglog(theory, [1 / math.sqrt(1 - x * x / 4) - 1 for x in theory], "-", color="tab:blue",
               alpha=0.5, label="discrete theory")
     ax.loglog(theory, [x / math.acos(1 - x * x / 2) - 1 for x in theory], "-", color="tab:red",
               alpha=0.5)
+    peers = read_peers(os.path.join(out, "study-peers-oscillator.csv"))
+    for engine, points in peers.items():
+        color, _ = PEER_STYLE.get(engine, ("tab:gray", "-."))
+        kept = [p for p in points if p["omega_h"] < 2 and math.isfinite(p["period_err"])]
+        ax.loglog([p["omega_h"] for p in kept], [abs(p["ampl_err"]) for p in kept], "x",
+                  color=color, ms=7, label=f"{NAME.get(engine, engine)}: |amplitude error|")
+        ax.loglog([p["omega_h"] for p in kept], [abs(p["period_err"]) for p in kept], "+",
+                  color=color, ms=8, label=f"{NAME.get(engine, engine)}: |period error|")
     ax.axvline(2, color="k", ls=":", label="omega h = 2: unstable beyond")
     ax.set_xlabel("omega h")
     ax.set_ylabel("relative error")
@@ -50,38 +59,103 @@ def fig4(rows, png):
     fig.savefig(png, dpi=110)
 
 
-def fig5(rows, png):
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4.4))  # own scales: 1e-4 beside 0.3
-    for ax, baumgarte, title in ((axes[0], 0, "split impulse (Tumble's default)"),
-                                 (axes[1], 1, "Baumgarte k_erp = 0.2 + restitution")):
+def worst_reached(row):
+    """The largest |apex error| among the apexes reached, and whether all five were."""
+    errs = [row[f"apex{k}_err"] for k in range(1, 6)]
+    reached = [abs(e) for e in errs if math.isfinite(e)]
+    return (max(reached) if reached else math.nan), len(reached) == len(errs)
+
+
+def side(rows):
+    """' (all above analytic)' or ' (all below)' when every apex reached is, else ''."""
+    errs = [r[f"apex{k}_err"] for r in rows for k in range(1, 6)]
+    errs = [e for e in errs if math.isfinite(e)]
+    if errs and all(e > 0 for e in errs):
+        return " (all above analytic)"
+    return " (all below)" if errs and all(e < 0 for e in errs) else ""
+
+
+# tumble-bench --study's bounce variants: (engine, correction, speculative) -> label, style.
+BOUNCE_PEERS = (
+    (("bullet", "default", 1), "Bullet (harness), its default", ("tab:green", "-", "^")),
+    (("bullet", "baumgarte", 1), "Bullet (harness), Baumgarte", ("tab:green", "--", "v")),
+    (("bullet", "split_impulse", 1), "Bullet (harness), split impulse", ("tab:green", ":", "D")),
+    (("bullet", "baumgarte", 0), "Bullet (harness), Baumgarte, touching contacts only",
+     ("tab:olive", "--", "v")),
+    (("bullet", "split_impulse", 0), "Bullet (harness), split impulse, touching contacts only",
+     ("tab:olive", ":", "D")),
+    (("ode", "default", 1), "ODE (harness), Baumgarte (ERP 0.2)", ("tab:purple", "-.", "s")),
+)
+
+
+def fig5(rows, png, out):
+    peers = read_peers(os.path.join(out, "study-peers-bounce.csv"))
+    fig, axes = plt.subplots(1, 3 if peers else 2, figsize=(18 if peers else 10, 4.6))
+    for ax, baumgarte, title in ((axes[0], 0, "Tumble, split impulse (its default)"),
+                                 (axes[1], 1, "Tumble, Baumgarte k_erp = 0.2 + restitution")):
         sel = sorted((r for r in rows if r["baumgarte"] == baumgarte), key=lambda r: r["h"])
         for k in range(1, 6):
             pts = [(r["h"], r[f"apex{k}_err"]) for r in sel if math.isfinite(r[f"apex{k}_err"])]
             ax.semilogx([p[0] for p in pts], [p[1] for p in pts], "o-", label=f"apex {k}")
         ax.axhline(0, color="k", lw=0.8)
         ax.set_xlabel("h (s)")
-        ax.set_title(title)
-        ax.grid(True, which="both", alpha=0.3)
-    for ax in axes:
         ax.set_ylabel("apex height / analytic - 1")
+        ax.set_title(title, fontsize=10)
+        ax.grid(True, which="both", alpha=0.3)
     axes[0].legend(fontsize=8)
+    if peers:
+        # The peers' errors span 1e-4 to 1: the worst apex on log axes, beside Tumble's.
+        ax = axes[2]
+        for baumgarte, label, color in ((0, "Tumble, split impulse", "tab:blue"),
+                                        (1, "Tumble, Baumgarte", "tab:orange")):
+            sel = sorted((r for r in rows if r["baumgarte"] == baumgarte), key=lambda r: r["h"])
+            ax.loglog([r["h"] for r in sel], [worst_reached(r)[0] for r in sel], "o-",
+                      color=color, lw=2, label=label + side(sel))
+        short = []
+        for (engine, correction, speculative), label, (color, style, marker) in BOUNCE_PEERS:
+            sel = sorted((r for r in peers.get(engine, [])
+                          if r["correction"] == correction and r["speculative"] == speculative),
+                         key=lambda r: r["h"])
+            if not sel:
+                continue
+            worst = [worst_reached(r) for r in sel]
+            ax.loglog([r["h"] for r in sel], [w[0] for w in worst], marker, ls=style,
+                      color=color, label=label + side(sel))
+            short += [(r["h"], w[0]) for r, w in zip(sel, worst) if not w[1]]
+        ax.plot([p[0] for p in short], [p[1] if math.isfinite(p[1]) else 1 for p in short],
+                "kx", ms=10, label="fewer than 5 apexes: the ball stopped bouncing")
+        ax.set_xlabel("h (s)")
+        ax.set_ylabel("worst |apex height / analytic - 1| of the first 5")
+        ax.set_title("beside the peers (tumble-bench --study)", fontsize=10)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1))
     fig.suptitle("Fig. 5: bounce heights against h (sphere, e = 0.8, from 1 m)")
     fig.tight_layout()
     fig.savefig(png, dpi=110)
 
 
+def number_or_text(v):
+    try:
+        return float(v)
+    except ValueError:
+        return v
+
+
 def read_peers(path):
-    """tumble-bench --string's rows by engine (the engine column kept as text); {} when absent."""
+    """tumble-bench --string's or --study's rows by engine (text columns kept as text); {} when
+    absent."""
     if not os.path.exists(path):
         return {}
     peers = {}
     for row in csv.DictReader(open(path)):
         engine = row.pop("engine")
-        peers.setdefault(engine, []).append({k: float(v) for k, v in row.items()})
+        peers.setdefault(engine, []).append({k: number_or_text(v) for k, v in row.items()})
     return peers
 
 
 PEER_STYLE = {"bullet": ("tab:green", "--"), "ode": ("tab:purple", ":")}
+# The peers' runs come from tumble-bench, not from this report's run.
+NAME = {"bullet": "Bullet (harness)", "ode": "ODE (harness)"}
 
 
 def windowed_spectrum(x, dt, omegas):
@@ -209,7 +283,7 @@ def main(out):
                             ("bounce", fig5, "fig5_bounce.png")):
         path = os.path.join(out, name + ".csv")
         if os.path.exists(path):
-            draw(read(path), os.path.join(out, png))
+            draw(read(path), os.path.join(out, png), out)
             print(f"wrote {os.path.join(out, png)}")
     for name, draw, png in (("string-spectrum", fig7, "fig7_string.png"),
                             ("string-cost", fig10, "fig10_string_cost.png"),

@@ -127,26 +127,54 @@ void writeStackPeers(std::ofstream& out, const std::string& dir, const CaseResul
 #endif
 }
 
-// Fig. 7 and Fig. 10 beside the peers: tumble-bench --string's committed CSVs (the same string
-// as point masses under the harness's thread forces in Bullet and ODE), copied into DIR for the
-// plot and named in the report. Nothing when they are not there.
-void copyStringPeers(std::ofstream& out, const std::string& dir, const std::string& name) {
 #ifdef TUMBLE_VALIDATE_BENCH_CSV
-    const std::string file =
-        name == "string" ? "string-peers-transient.csv" : "string-peers-cost.csv";
-    const std::filesystem::path from =
-        std::filesystem::path(TUMBLE_VALIDATE_BENCH_CSV).parent_path() / file;
-    std::error_code error;
-    if (!std::filesystem::exists(from, error))
-        return;
-    std::filesystem::copy_file(from, std::filesystem::path(dir) / file,
-                               std::filesystem::copy_options::overwrite_existing, error);
-    if (error)
-        return;
-    out << "\nBeside the peers: `" << file
-        << "` (plotted) is `tumble-bench --string`'s committed run (bench/results/harness): the "
-           "same string in Bullet and ODE as point masses under the harness's tension-only "
-           "thread forces (Tumble's explicit law), a separate run; see bench/README.md.\n";
+// The peers' runs of a case's scene, from tumble-bench's committed CSVs (bench/results/harness):
+// which file goes with which case, the harness mode that wrote it and what it ran.
+struct PeerCsv {
+    const char* caseName;
+    const char* file;
+    const char* mode;
+    const char* what;
+};
+
+constexpr const char* kStringPeers =
+    "the same string in Bullet and ODE as point masses under the harness's tension-only thread "
+    "forces (Tumble's explicit law)";
+
+constexpr PeerCsv kPeerCsvs[] = {
+    {"oscillator", "study-peers-oscillator.csv", "--study",
+     "the same mass on the same explicit spring (-k x applied before each step) in Bullet and ODE, "
+     "measured by the same code (validation/cases/fig45.h)"},
+    {"bounce", "study-peers-bounce.csv", "--study",
+     "the same drop in Bullet (its default correction: split impulse only for penetrations "
+     "deeper than 4 cm, Baumgarte for shallower; Baumgarte alone; split impulse everywhere; the "
+     "last two also without its speculative contacts) and ODE (Baumgarte, ERP 0.2), measured by "
+     "the same code (validation/cases/fig45.h)"},
+    {"string", "string-peers-transient.csv", "--string", kStringPeers},
+    {"string-cost", "string-peers-cost.csv", "--string", kStringPeers},
+};
+#endif
+
+// Fig. 4, 5, 7 and 10 beside the peers: the case's tumble-bench CSV (kPeerCsvs), copied into DIR
+// for the plot and named in the report. Nothing for other cases or when the file is not there.
+void copyPeerCsv(std::ofstream& out, const std::string& dir, const std::string& name) {
+#ifdef TUMBLE_VALIDATE_BENCH_CSV
+    for (const PeerCsv& peer : kPeerCsvs) {
+        if (name != peer.caseName)
+            continue;
+        const std::filesystem::path from =
+            std::filesystem::path(TUMBLE_VALIDATE_BENCH_CSV).parent_path() / peer.file;
+        std::error_code error;
+        if (!std::filesystem::exists(from, error))
+            continue;
+        std::filesystem::copy_file(from, std::filesystem::path(dir) / peer.file,
+                                   std::filesystem::copy_options::overwrite_existing, error);
+        if (error)
+            continue;
+        out << "\nBeside the peers: `" << peer.file << "` (plotted) is `tumble-bench " << peer.mode
+            << "`'s committed run (bench/results/harness): " << peer.what
+            << ", a separate run; see bench/README.md.\n";
+    }
 #else
     (void)out;
     (void)dir;
@@ -189,8 +217,7 @@ bool writeReport(const std::string& dir,
         writeCsv(dir + "/" + c->name + ".csv", r.table);
         if (c->name == "stack-cost")
             writeStackPeers(out, dir, r);
-        if (c->name == "string" || c->name == "string-cost")
-            copyStringPeers(out, dir, c->name);
+        copyPeerCsv(out, dir, c->name);
     }
     out.close();
     std::printf("wrote %s/report.md\n", dir.c_str());

@@ -1,6 +1,11 @@
 // Bullet 3 (Debian's libbullet-dev) behind the harness interface: btDiscreteDynamicsWorld with the
 // sequential-impulse solver, as the study used it; fixed steps of h (no sub-stepping), the
-// requested iterations, no deactivation (sleeping), restitution 0. Bullet has no spring elements
+// requested iterations, no deactivation (sleeping), the requested restitution (0 in the scenes).
+// Penetration: Bullet's default unless asked (SceneSettings::correction) -- split impulse only for
+// contacts deeper than 4 cm (m_splitImpulsePenetrationThreshold = -0.04), Baumgarte (ERP 0.2 in
+// the velocity) for shallower ones; Baumgarte asks m_splitImpulse = 0; split impulse asks it for
+// every penetrating contact (an infinite threshold). SceneSettings::speculativeContacts = false
+// drops the contacts that do not touch yet from the solve. Bullet has no spring elements
 // to match Tumble's implicit threads, so a net is point-mass spheres that collide with nothing
 // (collision mask 0) pulled by the harness's thread forces, applied before each step.
 
@@ -32,9 +37,21 @@ public:
           mass_(s.boxMass),
           // Bullet multiplies the two friction coefficients: sqrt(mu) on each gives mu.
           friction_(std::sqrt(s.friction)),
+          // It multiplies the restitutions too (btManifoldResult::calculateCombinedRestitution):
+          // sqrt(e) on each body gives e for every pair -- for the ball on the ground the same as
+          // 1 on the ground and e on the ball.
+          restitution_(std::sqrt(s.restitution)),
+          speculative_(s.speculativeContacts),
           cube_(btVector3(0.5, 0.5, 0.5)) {
         world_.setGravity(narrow(s.gravity));
-        world_.getSolverInfo().m_numIterations = s.iterations;
+        btContactSolverInfo& solver = world_.getSolverInfo();
+        solver.m_numIterations = s.iterations;
+        if (s.correction == SceneSettings::Correction::Baumgarte) {
+            solver.m_splitImpulse = 0;
+        } else if (s.correction == SceneSettings::Correction::SplitImpulse) {
+            solver.m_splitImpulse = 1;
+            solver.m_splitImpulsePenetrationThreshold = BT_LARGE_FLOAT;
+        }
     }
     ~BulletWorld() override {
         for (int i = world_.getNumCollisionObjects() - 1; i >= 0; --i) {
@@ -115,9 +132,11 @@ private:
         btRigidBody::btRigidBodyConstructionInfo info(static_cast<btScalar>(mass), motion, shape,
                                                       inertia);
         info.m_friction = static_cast<btScalar>(friction_);
-        info.m_restitution = 0;
+        info.m_restitution = static_cast<btScalar>(restitution_);
         auto* body = new btRigidBody(info);
         body->setActivationState(DISABLE_DEACTIVATION);
+        if (!speculative_)
+            body->setContactProcessingThreshold(0);
         if (mask == -1) {
             world_.addRigidBody(body);
         } else {
@@ -134,6 +153,8 @@ private:
     Real h_;
     Real mass_;
     Real friction_;
+    Real restitution_;
+    bool speculative_;
     btStaticPlaneShape plane_{btVector3(0, 0, 1), 0};
     btBoxShape cube_;
     std::vector<std::unique_ptr<btCollisionShape>> shapes_;  // outlive the bodies (destroyed after)

@@ -5,7 +5,8 @@
 // Markdown table and writes it as Markdown and CSV; --json writes the runs too.
 // --sweep DIR instead sweeps h and iterations for the speed-versus-error fronts (sweep.h);
 // --scaling times a step against the body count (scaling.h); --string DIR runs the study's
-// hanging string in the peers (string_peers.h).
+// hanging string in the peers (string_peers.h); --study DIR the study's oscillator and bouncing
+// ball (study_peers.h).
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -26,6 +27,7 @@
 #include "scaling.h"
 #include "scene.h"
 #include "string_peers.h"
+#include "study_peers.h"
 #include "sweep.h"
 #include "timing.h"
 
@@ -217,6 +219,11 @@ int main(int argc, char** argv) {
     app.add_option("--string", string.outDir,
                    "the study's hanging string in the peers instead (for Fig. 7 and Fig. 10 "
                    "beside Tumble's): write string-peers-{transient,cost}.csv to this directory");
+    StudyPeerOptions study;
+    app.add_option("--study", study.outDir,
+                   "the study's oscillator and bouncing ball in the peers instead (for Fig. 4 and "
+                   "Fig. 5 beside Tumble's): write study-peers-{oscillator,bounce}.csv to this "
+                   "directory");
     std::vector<std::string> engines;
     app.add_option("--engine", engines,
                    "run only these engines (tumble, bullet, ode, box2d); also for --scaling");
@@ -230,6 +237,10 @@ int main(int argc, char** argv) {
     if (!string.outDir.empty()) {
         string.engines = engines;
         return runStringPeers(string);
+    }
+    if (!study.outDir.empty()) {
+        study.engines = engines;
+        return runStudyPeers(study);
     }
     if (scaling.enabled) {
         scaling.outPrefix = outPrefix;

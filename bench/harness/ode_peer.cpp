@@ -4,8 +4,9 @@
 // - ERP 0.2 = Tumble's split-impulse factor (the fraction of the depth beyond the slop removed
 //   per step); contact surface layer 5 mm = Tumble's slop (the depth left alone);
 // - CFM 1e-5, ODE's double-precision default: nearly rigid constraints, as Tumble's;
-// - contacts: dContactApprox1 (the friction pyramid scaled by the normal force) with mu, bounce
-//   0, at most 4 points per pair (Bullet's and Tumble's manifold size);
+// - contacts: dContactApprox1 (the friction pyramid scaled by the normal force) with mu, at most
+//   4 points per pair (Bullet's and Tumble's manifold size); bounce 0 in the scenes, else the
+//   requested restitution (dContactBounce) above Bullet's 0.2 m/s threshold;
 // - QuickStep's random constraint order, seeded afresh for every world (deterministic runs).
 // Nets: ODE's joints have no tension-only spring, so a net is point masses (bodies without
 // geoms) pulled by the harness's thread forces, applied before each step.
@@ -34,7 +35,7 @@ void initOde() {
 class OdeWorld final : public PeerWorld {
 public:
     explicit OdeWorld(const SceneSettings& s)
-        : h_(s.timeStep), friction_(s.friction), cubeMass_(s.boxMass) {
+        : h_(s.timeStep), friction_(s.friction), restitution_(s.restitution), cubeMass_(s.boxMass) {
         initOde();
         // QuickStep shuffles its constraints with ODE's global generator: reseeding it makes each
         // world's run the same whatever ran before it in the process (every run is then equal).
@@ -140,6 +141,11 @@ private:
             c.surface.mode = dContactApprox1;
             c.surface.mu = self->friction_;  // the pair's mu: ODE has no per-body friction
             c.surface.bounce = 0;
+            if (self->restitution_ > 0) {
+                c.surface.mode |= dContactBounce;
+                c.surface.bounce = self->restitution_;
+                c.surface.bounce_vel = 0.2;  // (m/s) Bullet's m_restitutionVelocityThreshold
+            }
             self->deepest_ = std::max<Real>(self->deepest_, c.geom.depth);
             const dJointID joint = dJointCreateContact(self->world_, self->contacts_, &c);
             dJointAttach(joint, bodyA, bodyB);
@@ -151,6 +157,7 @@ private:
     dJointGroupID contacts_ = nullptr;
     Real h_;
     Real friction_;
+    Real restitution_;
     Real cubeMass_;
     Real deepest_ = 0;
     std::vector<dBodyID> bodies_;

@@ -22,6 +22,18 @@ struct SceneSettings {
     Real friction = 0.5;       ///< Coulomb mu of every pair, after the engine's combine rule
     Real boxMass = 1;          ///< (kg), unit cubes
     Vec3 gravity = Vec3(0, 0, -9.81);  ///< (m/s^2); the nets fly in free space (zero)
+    /// Restitution of every pair, after the engine's combine rule, in [0, 1]: 0 in the scenes;
+    /// only the study's bouncing ball (study_peers.h) sets it. Box2D keeps 0.
+    Real restitution = 0;
+    /// How penetration is corrected, where the engine has the choice (Bullet; Tumble): its own
+    /// default, Baumgarte (a bias in the velocity solve, which becomes real velocity) or split
+    /// impulse (a separate pseudo-velocity pass) for every penetrating contact. ODE has only
+    /// Baumgarte (its ERP) and ignores this.
+    enum class Correction { Default, Baumgarte, SplitImpulse } correction = Correction::Default;
+    /// Bullet only: do contacts closer than its breaking threshold (2 cm) enter the solve before
+    /// they touch, as its default (speculative contacts, whose target velocity Bullet sums with
+    /// the restitution's)? false keeps only touching ones (a contact processing threshold of 0).
+    bool speculativeContacts = true;
 };
 
 /// The pile's shapes. No cylinders: Debian's ODE is built without libccd and has no

@@ -13,7 +13,10 @@ namespace {
 class TumbleWorld final : public PeerWorld {
 public:
     explicit TumbleWorld(const SceneSettings& s)
-        : world_(worldDef(s)), friction_(s.friction), cubeMass_(s.boxMass) {}
+        : world_(worldDef(s)),
+          friction_(s.friction),
+          restitution_(s.restitution),
+          cubeMass_(s.boxMass) {}
     void addGround() override {
         const BodyId ground = world_.createBody(BodyDef{.type = BodyType::Static});
         world_.createShape(ground, ShapeDef{.geometry = HalfSpace{}, .material = material(1)});
@@ -65,6 +68,10 @@ private:
         // As many split-impulse sweeps as velocity sweeps, as Bullet runs its split-impulse pass.
         def.solver.relaxIterations = s.iterations;
         def.enableSleep = false;  // every engine simulates every body
+        if (s.correction == SceneSettings::Correction::Baumgarte)
+            def.solver.stabilisation = Stabilisation::Baumgarte;
+        else if (s.correction == SceneSettings::Correction::SplitImpulse)
+            def.solver.stabilisation = Stabilisation::SplitImpulse;
         return def;
     }
     int add(const BodyDef& def, const Shape& shape, Real density) {
@@ -73,12 +80,13 @@ private:
         bodies_.push_back(body);
         return static_cast<int>(bodies_.size()) - 1;
     }
-    // Tumble mixes friction as sqrt(muA muB): mu on both gives mu.
+    // Tumble mixes friction as sqrt(muA muB): mu on both gives mu; restitution e on both, e.
     Material material(Real density) const {
-        return Material{.friction = friction_, .restitution = 0, .density = density};
+        return Material{.friction = friction_, .restitution = restitution_, .density = density};
     }
     World world_;
     Real friction_;
+    Real restitution_;
     Real cubeMass_;
     std::vector<BodyId> bodies_;
 };

@@ -13,50 +13,39 @@
 // as h shrinks.
 //
 // Apexes are the vertices of the parabola through the three samples around each local maximum
-// of the centre height (ApexTracker), exact for a ballistic flight under semi-implicit Euler.
+// of the centre height (fig45.h's ApexTracker, shared with tumble-bench --study), exact for a
+// ballistic flight under semi-implicit Euler.
 
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include "../case.h"
+#include "fig45.h"
 #include "scenes.h"
 
 namespace tumble::validation {
 namespace {
-
-constexpr double kRadius = 0.1;       // (m)
-constexpr double kHeight = 1.0;       // drop height of the centre (m)
-constexpr double kRestitution = 0.8;  // on both materials
-constexpr int kBounces = 5;
-constexpr double kMaxTime = 6.0;  // (s) the five flights take about 2.8 s
-
-double analyticApex(int k) {
-    return kRadius + (kHeight - kRadius) * std::pow(kRestitution, 2 * k);
-}
 
 /// Relative errors of the first five apexes (NaN for an apex never reached).
 std::vector<double> apexErrors(int stepsPerSecond, Stabilisation stabilisation) {
     WorldDef def{.gravity = Vec3(0, 0, -scenes::kG), .timeStep = 1.0 / stepsPerSecond};
     def.solver.stabilisation = stabilisation;
     World world(def);
-    const Material surface = scenes::material(0.5, kRestitution, 1000);
+    const Material surface = scenes::material(0.5, fig45::kRestitution, 1000);
     scenes::addGround(world, surface);
-    const BodyId ball = world.createBody(BodyDef{.position = Vec3(0, 0, kHeight)});
-    world.createShape(ball, ShapeDef{.geometry = Sphere{kRadius}, .material = surface});
+    const BodyId ball = world.createBody(BodyDef{.position = Vec3(0, 0, fig45::kDropHeight)});
+    world.createShape(ball, ShapeDef{.geometry = Sphere{fig45::kBallRadius}, .material = surface});
 
-    scenes::ApexTracker tracker;
+    fig45::ApexTracker tracker;
     tracker.sample(world.position(ball).z());
-    const int steps = static_cast<int>(kMaxTime * stepsPerSecond);
-    for (int i = 0; i < steps && static_cast<int>(tracker.apexes().size()) < kBounces; ++i) {
+    const int steps = static_cast<int>(fig45::kBounceTime * stepsPerSecond);
+    for (int i = 0; i < steps && !tracker.complete(); ++i) {
         if (!world.step().ok())
             break;
         tracker.sample(world.position(ball).z());
     }
-    std::vector<double> errors(kBounces, NAN);
-    for (int k = 0; k < kBounces && k < static_cast<int>(tracker.apexes().size()); ++k)
-        errors[k] = tracker.apexes()[k] / analyticApex(k + 1) - 1;
-    return errors;
+    return tracker.errors();
 }
 
 std::string rateName(int stepsPerSecond) {
@@ -68,9 +57,8 @@ CaseResult run(const CaseOptions& options) {
     const double kAccuracy = 0.02;     // every apex at h = 1/240
     const double kEnergyGain = 0.005;  // no apex above analytic by more than this, any h
     const int kAccuracyRate = 240;
-    const std::vector<int> convergenceRates = {60, 240, 1000};
-    const std::vector<int> rates =
-        options.fast ? convergenceRates : std::vector<int>{60, 120, 240, 480, 1000, 2000};
+    const std::vector<int> convergenceRates = fig45::bounceRates(true);
+    const std::vector<int> rates = fig45::bounceRates(options.fast);
     result.tolerance("apex_rel_err_at_h_1_240", kAccuracy);
     result.tolerance("apex_above_analytic_rel_max", kEnergyGain);
 
@@ -84,7 +72,7 @@ CaseResult run(const CaseOptions& options) {
             TableRow row{{{"h", 1.0 / rate}, {"baumgarte", baumgarte ? 1.0 : 0.0}}};
             double worst = 0, highest = -1e300;
             bool complete = true;
-            for (int k = 0; k < kBounces; ++k) {
+            for (int k = 0; k < fig45::kBounces; ++k) {
                 row.values.emplace_back("apex" + std::to_string(k + 1) + "_err", errors[k]);
                 complete = complete && std::isfinite(errors[k]);
                 if (std::isfinite(errors[k])) {

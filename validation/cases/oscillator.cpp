@@ -9,11 +9,9 @@
 // unbounded (A -> inf) as omega h -> 2. At omega h >= 2 an eigenvalue leaves the unit circle and
 // the motion grows.
 //
-// Measurements: period from the mean spacing of zero crossings (linear interpolation) over the
-// run; amplitude from the sinusoid through three samples around each positive peak,
-// A^2 = (x_k^2 - x_{k-1} x_{k+1}) / sin^2(theta'), cos(theta') = (x_{k-1} + x_{k+1}) / (2 x_k),
-// which is exact for a sampled sinusoid, so the measured error is the integrator's, not the
-// sampling's.
+// Measurements (fig45.h's measureOscillation, shared with tumble-bench --study): the period from
+// the mean spacing of zero crossings, the amplitude from the sinusoid through three samples around
+// each positive peak, exact for a sampled sinusoid.
 
 #include <algorithm>
 #include <cmath>
@@ -21,28 +19,20 @@
 #include <vector>
 
 #include "../case.h"
+#include "fig45.h"
 #include "tumble/tumble.h"
 
 namespace tumble::validation {
 namespace {
 
-struct Response {
-    double amplitude = 0;  // measured A (m)
-    double period = 0;     // measured (s); 0 when no two crossings
-    double growth = 0;     // max |x| over the last tenth / max |x| over the first tenth
-    bool finite = true;
-};
-
-Response simulate(double omegaH, int minSteps) {
+fig45::Oscillation simulate(double omegaH) {
     const double h = omegaH;  // omega = 1
     World world(WorldDef{.gravity = Vec3::Zero(), .timeStep = h});
     BodyDef def;
     def.position = Vec3(1, 0, 0);
     const BodyId body = world.createBody(def);
 
-    const double periods = 200;
-    const int steps =
-        std::min(200000, std::max(minSteps, static_cast<int>(periods * 2 * std::numbers::pi / h)));
+    const int steps = fig45::oscillatorSteps(h);
     std::vector<double> x;
     x.reserve(steps + 1);
     x.push_back(1.0);
@@ -51,53 +41,15 @@ Response simulate(double omegaH, int minSteps) {
         if (!world.step().ok())
             break;
         x.push_back(world.position(body).x());
-        if (std::abs(x.back()) > 1e12)
-            break;  // clearly unstable; stop before overflow
+        if (std::abs(x.back()) > fig45::kOscillatorBlowUp)
+            break;
     }
-
-    Response r;
-    const std::size_t n = x.size();
-    const std::size_t tenth = std::max<std::size_t>(n / 10, 2);
-    double early = 0, late = 0;
-    for (std::size_t i = 0; i < tenth; ++i)
-        early = std::max(early, std::abs(x[i]));
-    for (std::size_t i = n - tenth; i < n; ++i)
-        late = std::max(late, std::abs(x[i]));
-    r.growth = late / early;
-
-    double firstCrossing = -1, lastCrossing = -1;
-    int crossings = 0;
-    double amplitudeSum = 0;
-    int peaks = 0;
-    for (std::size_t i = 1; i + 1 < n; ++i) {
-        if ((x[i - 1] > 0) != (x[i] > 0)) {
-            const double t = h * (static_cast<double>(i) - 1 + x[i - 1] / (x[i - 1] - x[i]));
-            if (crossings == 0)
-                firstCrossing = t;
-            lastCrossing = t;
-            ++crossings;
-        }
-        if (x[i] > 0 && x[i] >= x[i - 1] && x[i] >= x[i + 1]) {
-            const double cosTheta = (x[i - 1] + x[i + 1]) / (2 * x[i]);
-            const double sin2 = 1 - cosTheta * cosTheta;
-            if (sin2 > 1e-12) {
-                amplitudeSum += std::sqrt((x[i] * x[i] - x[i - 1] * x[i + 1]) / sin2);
-                ++peaks;
-            }
-        }
-    }
-    if (crossings >= 2)
-        r.period = 2 * (lastCrossing - firstCrossing) / (crossings - 1);
-    r.amplitude = peaks > 0 ? amplitudeSum / peaks : late;
-    return r;
+    return fig45::measureOscillation(x, h);
 }
 
 CaseResult run(const CaseOptions& options) {
     CaseResult result;
-    const std::vector<double> sweep =
-        options.fast ? std::vector<double>{0.01, 0.03, 0.1, 0.3, 0.5, 1.5, 1.9, 2.0, 2.5}
-                     : std::vector<double>{0.01, 0.02, 0.05, 0.1, 0.2,  0.3, 0.5,  0.8, 1.0,
-                                           1.2,  1.5,  1.8,  1.9, 1.95, 2.0, 2.05, 2.2, 2.5};
+    const std::vector<double> sweep = fig45::oscillatorSweep(options.fast);
     const double kTwoPi = 2 * std::numbers::pi;
     // Agreement of the measurement with the discrete theory: the sweep runs 200 periods, so the
     // crossing-based period is good to ~1e-6 and the three-sample amplitude to rounding.
@@ -108,7 +60,7 @@ CaseResult run(const CaseOptions& options) {
     double worstBoundedGrowth = 0;
     double weakestUnstableGrowth = 1e300;
     for (double wh : sweep) {
-        const Response r = simulate(wh, 20000);
+        const fig45::Oscillation r = simulate(wh);
         const double amplitudeError = r.amplitude - 1;
         const double periodError = r.period > 0 ? r.period / kTwoPi - 1 : NAN;
         result.table.push_back({{{"omega_h", wh},

@@ -1,7 +1,7 @@
 #pragma once
 /// Scene pieces shared by the contact validation cases: a ground, boxes, stacks and pyramids of
-/// unit cubes, a "still standing" test, and a tracker of bounce apexes. Header-only: each case
-/// is one translation unit and these are small.
+/// unit cubes and a "still standing" test (the bounce's apex tracker is fig45.h's). Header-only:
+/// each case is one translation unit and these are small.
 
 #include <algorithm>
 #include <cmath>
@@ -169,31 +169,5 @@ inline PileRun runPile(World& world, const std::vector<BodyId>& cubes, const Sta
     run.verticalAtEnd = standing.verticalExcess(world, cubes);
     return run;
 }
-
-/// Apexes of a bouncing body's height z(t_n), sampled once per step. In free flight
-/// semi-implicit Euler puts the samples exactly on a parabola in t (see free_fall.cpp), so the
-/// vertex of the parabola through the three samples around a local maximum is the apex of the
-/// discrete flight, free of the up-to g h^2 / 8 error of taking the highest sample.
-class ApexTracker {
-public:
-    /// Feeds the height after each step (m), starting with the initial height.
-    void sample(Real z) {
-        z0_ = z1_;
-        z1_ = z2_;
-        z2_ = z;
-        ++count_;
-        if (count_ >= 3 && z1_ > z0_ && z1_ >= z2_) {
-            const Real curvature = z0_ - 2 * z1_ + z2_;  // = -g h^2 in flight
-            apexes_.push_back(curvature < 0 ? z1_ - (z0_ - z2_) * (z0_ - z2_) / (8 * curvature)
-                                            : z1_);
-        }
-    }
-    const std::vector<Real>& apexes() const { return apexes_; }
-
-private:
-    Real z0_ = 0, z1_ = 0, z2_ = 0;
-    int count_ = 0;
-    std::vector<Real> apexes_;
-};
 
 }  // namespace tumble::validation::scenes
