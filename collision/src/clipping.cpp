@@ -138,9 +138,11 @@ std::uint32_t pointId(bool referenceIsA, std::uint32_t referenceFeature, const P
 }  // namespace
 
 void clipToManifold(const ReferenceFace& reference, std::span<const ClipVertex> incident,
-                    bool referenceIsA, Real margin, Manifold& out) {
+                    bool referenceIsA, Real margin, Manifold& out, const Vec3* contactNormal) {
     out.clear();
-    out.normal = referenceIsA ? reference.normal : Vec3(-reference.normal);
+    out.normal = contactNormal != nullptr
+                     ? *contactNormal
+                     : (referenceIsA ? reference.normal : Vec3(-reference.normal));
     const int incidentCount =
         static_cast<int>(std::min<std::size_t>(incident.size(), kMaxClipVertices));
     const int sideCount = static_cast<int>(reference.vertices.size());
@@ -169,18 +171,23 @@ void clipToManifold(const ReferenceFace& reference, std::span<const ClipVertex> 
         }
     }
 
-    // Separation along the reference normal; positions midway between the incident point and
-    // its projection on the reference plane.
+    // Separation along the manifold normal: the distance from the incident point to the
+    // reference plane along `outward` (the manifold normal turned out of the reference face;
+    // equal to the reference normal unless a contact normal was given), positions midway.
     const Real planeOffset = reference.normal.dot(reference.vertices[0]);
+    const Vec3 outward = referenceIsA ? out.normal : Vec3(-out.normal);
+    const Real cosine = contactNormal != nullptr ? reference.normal.dot(outward) : Real(1);
+    if (!(cosine > 0))
+        return;
     thread_local std::array<ContactPoint, kMaxClipVertices> candidates;
     std::size_t candidateCount = 0;
     for (int i = 0; i < current->count; ++i) {
         const PolygonVertex& v = current->vertices[static_cast<std::size_t>(i)];
-        const Real separation = reference.normal.dot(v.position) - planeOffset;
+        const Real separation = (reference.normal.dot(v.position) - planeOffset) / cosine;
         if (separation > margin)
             continue;
-        candidates[candidateCount++] = {v.position - (separation / 2) * reference.normal,
-                                        separation, pointId(referenceIsA, reference.featureId, v)};
+        candidates[candidateCount++] = {v.position - (separation / 2) * outward, separation,
+                                        pointId(referenceIsA, reference.featureId, v)};
     }
     // Every kept point lies on the boundary of the incident polygon clipped so far, in order,
     // so the candidates are a convex polygon in boundary order.

@@ -51,8 +51,15 @@ struct ReferenceFace {
 /// edge (named by the featureId of its first vertex, mod 1024) or a reference side (1024 + side
 /// index). A kept incident vertex is thus named by its two incident edges, a side crossing by the
 /// edge and the side, a reference corner by its two sides.
+///
+/// `contactNormal` (world, unit, from A to B), when given, replaces the reference normal as the
+/// manifold normal: each point's separation is then its distance to the reference plane along
+/// that normal, and its position is midway along it. A caller whose reference face is a few
+/// degrees off the true contact normal keeps the true normal (and the true depth) this way. The
+/// reference normal must then make an angle well below 90 degrees with it.
 void clipToManifold(const ReferenceFace& reference, std::span<const ClipVertex> incident,
-                    bool referenceIsA, Real margin, Manifold& out);
+                    bool referenceIsA, Real margin, Manifold& out,
+                    const Vec3* contactNormal = nullptr);
 
 /// How far outside a reference side plane an incident vertex may lie and still be kept (m).
 constexpr Real kClipTolerance = 1e-5;

@@ -5,9 +5,10 @@
 /// Each shape offers the feature most aligned with the normal (A along +n, B along -n): a box or
 /// hull face, a cylinder cap polygon (a regular kCapVertexCount-gon inscribed in the rim), a
 /// cylinder side line or a capsule segment (when nearly perpendicular to the normal), else a
-/// single point. When a face lies within kFaceCos of the normal, the better aligned face is the
-/// reference and the other feature is clipped against it (clipToManifold); otherwise the contact
-/// is the single pair of witness points (edge-edge, a rim or a sphere touching anything).
+/// single point. When a face lies within kFaceCos of the normal (kCapCos when a cylinder cap
+/// takes part), the better aligned face is the reference and the other feature is clipped
+/// against it (clipToManifold); otherwise the contact is the single pair of witness points
+/// (edge-edge, a rim or a sphere touching anything).
 ///
 /// Feature ids: vertex ids are fixed per shape (box corner by its signs, hull vertex index,
 /// cylinder rim vertex index, segment end), and face ids are the face index, so the ids stay the
@@ -29,6 +30,15 @@ constexpr int kCapVertexCount = 16;
 /// face is clipped; beyond it the contact is a point, because clipping would set the manifold
 /// normal to a face normal that differs from the true one.
 constexpr Real kFaceCos = 0.9998;
+/// A cylinder cap is offered as a polygon when cos(angle to the direction) >= this (15 degrees),
+/// and when a cap takes part, faces within this angle of the normal are clipped too. Stacked
+/// cylinders whose caps are tilted a few degrees against each other (and against the normal)
+/// then keep a supporting polygon instead of rocking on one rim point. The manifold keeps the
+/// query normal, and each point's separation is measured along it (clipToManifold's
+/// contactNormal), so the looser face test does not tilt the normal or change the depth. The
+/// inscribed cap polygon makes a rim contact shallower by at most
+/// r (1 - cos(pi / kCapVertexCount)) sin(15 deg) = 0.5 % of r.
+constexpr Real kCapCos = 0.9659;
 /// A segment (capsule core, cylinder side line) counts as lying across the normal when
 /// |sin(angle to the plane)| <= this.
 constexpr Real kSegmentSin = 0.02;
@@ -44,6 +54,7 @@ struct Feature {
     std::array<std::uint32_t, kMaxClipVertices> ids{};
     int count = 0;
     bool isFace = false;          ///< a polygon of >= 3 vertices, counter-clockwise from outside
+    bool isCap = false;           ///< a cylinder cap
     Vec3 normal = Vec3::UnitZ();  ///< outward face normal (world), when isFace
     Real alignment = -1;          ///< normal . direction, when isFace
     std::uint32_t id = 0;         ///< face (or feature) id on its shape
@@ -101,7 +112,7 @@ void boxFeature(const Box& box, const Transform& pose, const Vec3& d, Feature& f
 void cylinderFeature(const Cylinder& cylinder, const Transform& pose, const Vec3& d, Feature& f) {
     const Real h = cylinder.halfLength, r = cylinder.radius;
     const Real radial = std::hypot(d.x(), d.y());
-    if (std::abs(d.z()) >= kFaceCos) {
+    if (std::abs(d.z()) >= kCapCos) {
         const bool top = d.z() > 0;
         for (int k = 0; k < kCapVertexCount; ++k) {
             const int index = top ? k : kCapVertexCount - 1 - k;  // counter-clockwise from outside
@@ -110,6 +121,7 @@ void cylinderFeature(const Cylinder& cylinder, const Transform& pose, const Vec3
                   static_cast<std::uint32_t>(top ? index : kCapVertexCount + index));
         }
         f.setFace(pose, Vec3(0, 0, top ? 1 : -1), d, top ? 0 : 1);
+        f.isCap = true;
         return;
     }
     const Vec3 rim(r * d.x() / radial, r * d.y() / radial, 0);  // radial > 0 here
@@ -190,8 +202,10 @@ void collideConvex(const Shape& a, const Transform& poseA, const Shape& b, const
     Feature featureA, featureB;
     featureAlong(a, poseA, contact.normal, featureA);
     featureAlong(b, poseB, -contact.normal, featureB);
-    const bool faceA = featureA.isFace && featureA.alignment >= kFaceCos;
-    const bool faceB = featureB.isFace && featureB.alignment >= kFaceCos;
+    const bool capPair = featureA.isCap || featureB.isCap;
+    const Real faceCos = capPair ? kCapCos : kFaceCos;
+    const bool faceA = featureA.isFace && featureA.alignment >= faceCos;
+    const bool faceB = featureB.isFace && featureB.alignment >= faceCos;
     const bool pointLike = featureA.count <= 1 || featureB.count <= 1;
     if ((!faceA && !faceB) || pointLike || featureA.count + featureB.count > kMaxClipVertices) {
         return addSinglePoint(contact, featureA, featureB, out);
@@ -211,7 +225,7 @@ void collideConvex(const Shape& a, const Transform& poseA, const Shape& b, const
     clipToManifold(face,
                    std::span<const ClipVertex>(incidentVertices.data(),
                                                static_cast<std::size_t>(incident.count)),
-                   referenceIsA, margin, out);
+                   referenceIsA, margin, out, capPair ? &contact.normal : nullptr);
     // Clipping can lose a grazing contact to rounding at the side planes; keep the witness pair.
     if (out.pointCount == 0)
         addSinglePoint(contact, featureA, featureB, out);
