@@ -150,8 +150,9 @@ TEST(CylinderCapManifold, RimOnABoxFaceKeepsTheTrueDepth) {
         EXPECT_NEAR(deepest(m), -2e-3, polygonError(kCylinder, tilt));
         for (int i = 0; i < m.pointCount; ++i)
             EXPECT_GE(m.points[static_cast<std::size_t>(i)].separation, -2e-3 - 1e-6);
-        if (tilt < 15 * kDegree)
+        if (tilt < 15 * kDegree) {
             EXPECT_GE(m.pointCount, 3);
+        }
     }
 }
 
