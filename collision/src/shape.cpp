@@ -167,6 +167,22 @@ struct SupportOf {
     }
 };
 
+struct BoundingRadius {
+    Real operator()(const Sphere& sphere) const { return sphere.radius; }
+    Real operator()(const Capsule& capsule) const { return capsule.halfLength + capsule.radius; }
+    Real operator()(const Box& box) const { return box.halfExtents.norm(); }
+    Real operator()(const Cylinder& cylinder) const {
+        return std::hypot(cylinder.radius, cylinder.halfLength);
+    }
+    Real operator()(const ConvexHull& hull) const {
+        Real largest = 0;
+        for (const Vec3& vertex : hull.data->vertices)
+            largest = std::max(largest, vertex.norm());
+        return largest;
+    }
+    Real operator()(const HalfSpace&) const { return std::numeric_limits<Real>::infinity(); }
+};
+
 }  // namespace
 
 void checkShape(const Shape& shape, const char* where) {
@@ -179,6 +195,10 @@ Aabb boundsOf(const Shape& shape, const Transform& pose) {
 
 Vec3 support(const Shape& shape, const Vec3& direction) {
     return std::visit(SupportOf{direction}, shape);
+}
+
+Real boundingRadius(const Shape& shape) {
+    return std::visit(BoundingRadius{}, shape);
 }
 
 }  // namespace tumble

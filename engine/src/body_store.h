@@ -59,6 +59,10 @@ struct BodyInfo {
     bool builtAsleep = false;
     bool massFromShapes = false;  ///< mass properties come from the shapes
     bool fixedRotation = false;   ///< BodyDef::fixedRotation: zero inverse inertia
+    /// Largest distance from the centre of mass to a point of the body's shapes (m), an upper
+    /// bound from each shape's bounding sphere; 0 without shapes. Derived from the shapes and
+    /// the mass (World::Impl::refreshExtent), so not saved in a checkpoint but recomputed.
+    Real extent = 0;
 
     static constexpr std::uint32_t kNoShape = 0xFFFFFFFF;
     static constexpr std::uint32_t kNone = 0xFFFFFFFF;

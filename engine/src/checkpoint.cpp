@@ -482,6 +482,8 @@ void restoreCheckpoint(World& world, std::span<const std::uint8_t> bytes, std::s
         reader.corrupt("bytes left after the last field");
     CheckpointAccess::check(reader, *loaded);
 
+    for (std::uint32_t index = 0; index < loaded->bodies.count(); ++index)
+        loaded->refreshExtent(index);  // derived, not saved
     loaded->connectLogs();
     loaded->preStep = std::move(current->preStep);
     current.swap(loaded);

@@ -99,16 +99,19 @@ void Islands::updateSleep(BodyStore& bodies, ContactManager& contacts, const Spr
                           const WorldDef& settings) {
     if (!settings.enableSleep)
         return;
-    const Real linear2 = settings.linearSleepVelocity * settings.linearSleepVelocity;
-    const Real angular2 = settings.angularSleepVelocity * settings.angularSleepVelocity;
+    const Real linear = settings.linearSleepVelocity;
+    const Real angular = settings.angularSleepVelocity;
     bool anySleepy = false;
     for (const std::uint32_t index : bodies.awake) {
         BodyInfo& info = bodies.info[index];
         if (info.type != BodyType::Dynamic)
             continue;
         const BodyMotion& m = bodies.motion[index];
-        if (info.pushed || !info.allowSleep || m.linearVelocity.squaredNorm() > linear2 ||
-            m.angularVelocity.squaredNorm() > angular2) {
+        // Still when no point of the body moves faster than the linear threshold (its centre's
+        // speed plus its turn at its extent), and it turns slower than the angular threshold.
+        const Real turn = m.angularVelocity.norm();
+        if (info.pushed || !info.allowSleep || turn > angular ||
+            m.linearVelocity.norm() + info.extent * turn > linear) {
             info.sleepTime = 0;
             info.pushed = false;
         } else {

@@ -6,8 +6,9 @@
 /// island per group of touching bodies, not one for everything on the ground.
 ///
 /// Falling asleep (the sleep stage, after the step's motion): each awake dynamic body's timer
-/// grows by h while it is still (speed below WorldDef::linearSleepVelocity and angular speed
-/// below angularSleepVelocity) and resets otherwise, or when it may not sleep, or when it touches
+/// grows by h while it is still (its centre's speed plus its angular speed times its extent below
+/// WorldDef::linearSleepVelocity, and its angular speed below angularSleepVelocity) and resets
+/// otherwise, or when it may not sleep, or when it touches
 /// a moving kinematic body. Only when some timer has reached timeToSleep is a union-find run over
 /// the awake bodies and touching active contacts; an island sleeps when its smallest timer has.
 /// Sleeping bodies lose their velocities, leave BodyStore::awake, and their contacts with

@@ -187,6 +187,7 @@ void World::setMassProperties(BodyId id, const MassProperties& mass) {
     }
     impl_->bodies.setMass(index, mass);
     impl_->bodies.info[index].massFromShapes = false;
+    impl_->refreshExtent(index);
     impl_->islands.push(impl_->bodies, impl_->contacts, index);
 }
 

@@ -2,6 +2,7 @@
 /// The world's private state, shared by the files that implement World (world.cpp for bodies and
 /// the step, world_shapes.cpp for shapes and contacts, world_queries.cpp for queries).
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 
@@ -92,6 +93,19 @@ struct World::Impl {
         for (std::uint32_t slot = bodies.info[bodyIndex].firstShape; slot != BodyInfo::kNoShape;
              slot = shapes.records[slot].nextInBody) {
             contacts.refreshShape(shapes, slot, bodies, settings.timeStep);
+        }
+    }
+
+    // BodyInfo::extent after the body's shapes or centre of mass changed.
+    void refreshExtent(std::uint32_t bodyIndex) {
+        BodyInfo& info = bodies.info[bodyIndex];
+        const Vec3& center = bodies.inertia[bodyIndex].localCenter;
+        info.extent = 0;
+        for (std::uint32_t slot = info.firstShape; slot != BodyInfo::kNoShape;
+             slot = shapes.records[slot].nextInBody) {
+            const ShapeDef& def = shapes.records[slot].def;
+            info.extent = std::max(info.extent, (def.localPose.position - center).norm() +
+                                                    boundingRadius(def.geometry));
         }
     }
 

@@ -72,6 +72,7 @@ ShapeId World::createShape(BodyId body, const ShapeDef& def) {
         w.bodies.setMass(bodyIndex, mass);
         info.massFromShapes = true;
     }
+    w.refreshExtent(bodyIndex);
     // A body built asleep stays asleep as its shapes are added; any other one wakes. A new
     // static shape wakes nothing: a scene is built ground first, then a pile created asleep.
     if (info.type == BodyType::Dynamic && !info.builtAsleep)
@@ -96,6 +97,7 @@ void World::destroyShape(ShapeId id) {
     }
     w.contacts.removeShape(w.shapes, slot, w.bodies);
     w.shapes.remove(id);
+    w.refreshExtent(bodyIndex);
 }
 
 bool World::isValid(ShapeId id) const {

@@ -133,6 +133,30 @@ TEST(Support, HullIsTheBruteForceMaximumOverItsVertices) {
     }
 }
 
+// The bounding radius is the farthest any point of the shape lies from its origin: no support
+// point in any direction lies beyond it, and (these shapes being closed) some direction reaches
+// it to within the sampling's resolution.
+TEST(BoundingRadius, IsTheFarthestSupportPoint) {
+    std::mt19937 rng(5);
+    const std::vector<Shape> shapes = {Sphere{0.15}, Capsule{0.1, 0.3}, Box{Vec3(0.15, 0.12, 0.1)},
+                                       Cylinder{0.14, 0.1}, randomHull(rng, 40)};
+    const std::vector<Real> exact = {0.15, 0.4, std::sqrt(0.15 * 0.15 + 0.12 * 0.12 + 0.01),
+                                     std::hypot(0.14, 0.1), -1};
+    for (std::size_t i = 0; i < shapes.size(); ++i) {
+        const Real radius = boundingRadius(shapes[i]);
+        if (exact[i] > 0)
+            EXPECT_NEAR(radius, exact[i], 1e-15) << "shape " << i;
+        Real farthest = 0;
+        for (int trial = 0; trial < 20000; ++trial)
+            farthest = std::max(farthest, support(shapes[i], randomDirection(rng)).norm());
+        EXPECT_LE(farthest, radius * (1 + 1e-12)) << "shape " << i;
+        // A sphere, a capsule's end caps, a hull's vertices are hit exactly; a box's corner and
+        // a cylinder's rim by directions within their normal cones, which sampling finds.
+        EXPECT_GE(farthest, radius * (1 - 1e-3)) << "shape " << i;
+    }
+    EXPECT_EQ(boundingRadius(HalfSpace{}), std::numeric_limits<Real>::infinity());
+}
+
 TEST(Support, RefusesHalfSpace) {
     EXPECT_TRUE(contains(refusal([] { support(HalfSpace{}, Vec3::UnitZ()); }), "unbounded"));
 }

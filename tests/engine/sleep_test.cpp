@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "refusal.h"
+#include "tumble/checkpoint.h"
 #include "tumble/world.h"
 
 namespace tumble {
@@ -34,10 +35,14 @@ BodyId addBox(World& world, const Vec3& position, BodyDef def = {}) {
     return box;
 }
 
-bool isStill(const World& world, BodyId id) {
+// The sleep test (WorldDef::linearSleepVelocity): no point of the body, which reaches `extent`
+// from its centre of mass, moves faster than the linear threshold, and it turns slower than the
+// angular one.
+bool isStill(const World& world, BodyId id, Real extent) {
     const WorldDef& s = world.settings();
-    return world.linearVelocity(id).norm() < s.linearSleepVelocity &&
-           world.angularVelocity(id).norm() < s.angularSleepVelocity;
+    const Real turn = world.angularVelocity(id).norm();
+    return world.linearVelocity(id).norm() + extent * turn <= s.linearSleepVelocity &&
+           turn <= s.angularSleepVelocity;
 }
 
 // Steps until the body sleeps; returns the number of steps taken, or -1 after maxSteps.
@@ -86,7 +91,7 @@ TEST(Sleep, DroppedBoxFallsAsleepOnlyAfterStayingStillForTimeToSleep) {
             asleepAt = i;
             break;
         }
-        stillRun = isStill(world, box) ? stillRun + 1 : 0;
+        stillRun = isStill(world, box, std::sqrt(0.75)) ? stillRun + 1 : 0;  // half-diagonal
     }
     ASSERT_GT(asleepAt, 0) << "the box never fell asleep";
     EXPECT_GE(stillRun, stillSteps - 1) << "it fell asleep before it had been still for long";
@@ -254,6 +259,56 @@ TEST(Sleep, BodyThatMayNotSleepKeepsItsIslandAwake) {
     EXPECT_TRUE(world.isAwake(lower));
     EXPECT_TRUE(world.isAwake(upper)) << "it rests on a body that may not sleep";
     EXPECT_FALSE(world.isAwake(apart)) << "a separate island sleeps";
+}
+
+// A sphere on the ground spinning slowly about the vertical: a point contact has no friction
+// about its normal, so nothing stops the spin (checked: it keeps its angular velocity), and a
+// bare angular threshold below 0.2 rad/s would keep it -- and any pile it is part of -- awake
+// for good. Its surface moves at 0.2 rad/s x 0.15 m = 3 cm/s, below the 5 cm/s threshold: it
+// counts as still and falls asleep after timeToSleep.
+TEST(Sleep, SmallBodySpinningSlowlyAboutItsContactNormalFallsAsleep) {
+    World world;
+    addGround(world);
+    const BodyId sphere = world.createBody(BodyDef{.position = Vec3(0, 0, 0.15)});
+    ShapeDef shape{.geometry = Sphere{0.15}};
+    shape.material.friction = 0.5;
+    world.createShape(sphere, shape);
+    world.setAngularVelocity(sphere, Vec3(0, 0, 0.2));
+    const Real h = world.settings().timeStep;
+    const int stillSteps = static_cast<int>(std::lround(world.settings().timeToSleep / h));
+    for (int i = 0; i < stillSteps / 2; ++i)
+        ASSERT_TRUE(world.step().ok());
+    EXPECT_NEAR(world.angularVelocity(sphere).z(), 0.2, 1e-9) << "the spin is not opposed";
+    const int asleepAt = stepUntilAsleep(world, sphere, stillSteps);
+    EXPECT_GT(asleepAt, 0) << "a 15 cm sphere turning at 0.2 rad/s never fell asleep";
+}
+
+// What stays awake: a 10 m beam turning at 0.02 rad/s (its ends move at 0.1 m/s, though its
+// angular speed is far below the angular threshold), and a 2 cm bead spinning at 1 rad/s (its
+// surface moves at 2 cm/s, but it turns faster than the 0.5 rad/s the threshold allows). Both
+// float free of gravity, each its own island. The beam's extent is derived data, recomputed
+// when a checkpoint is loaded: the restored beam must stay awake too.
+TEST(Sleep, LongBodyTurningSlowlyAndSmallBodySpinningFastStayAwake) {
+    World world(WorldDef{.gravity = Vec3::Zero()});
+    const BodyId beam = world.createBody(BodyDef{.angularVelocity = Vec3(0, 0, 0.02)});
+    world.createShape(beam, ShapeDef{.geometry = Box{Vec3(5, 0.1, 0.1)}});
+    const BodyId bead =
+        world.createBody(BodyDef{.position = Vec3(0, 3, 0), .angularVelocity = Vec3(1, 0, 0)});
+    world.createShape(bead, ShapeDef{.geometry = Sphere{0.02}});
+    const BodyId slow =
+        world.createBody(BodyDef{.position = Vec3(0, -3, 0), .angularVelocity = Vec3(0.2, 0, 0)});
+    world.createShape(slow, ShapeDef{.geometry = Sphere{0.02}});
+    for (int i = 0; i < 120; ++i)
+        ASSERT_TRUE(world.step().ok());
+    EXPECT_TRUE(world.isAwake(beam)) << "its ends move at 0.1 m/s";
+    EXPECT_TRUE(world.isAwake(bead)) << "it spins at 1 rad/s";
+    EXPECT_FALSE(world.isAwake(slow)) << "the same bead at 0.2 rad/s is still";
+
+    World resumed(WorldDef{.gravity = Vec3::Zero()});
+    restoreCheckpoint(resumed, checkpointBytes(world));
+    for (int i = 0; i < 120; ++i)
+        ASSERT_TRUE(resumed.step().ok());
+    EXPECT_TRUE(resumed.isAwake(beam)) << "the loaded beam lost its extent";
 }
 
 TEST(Sleep, StackOfFiveSleepsAsOneIslandAndWakingTheTopWakesAll) {

@@ -49,18 +49,24 @@ struct WorldDef {
     /// The contact solver: iterations, friction model, stabilisation, restitution threshold.
     SolverSettings solver{};
 
-    /// Sleeping: an island (dynamic bodies joined by touching contacts) whose every body has moved
-    /// slower than both thresholds for timeToSleep falls asleep -- it is no longer integrated,
+    /// Sleeping: an island (dynamic bodies joined by touching contacts) whose every body has been
+    /// still for timeToSleep falls asleep -- it is no longer integrated,
     /// solved or collided, and costs nothing per step -- until something touches or pushes it.
     /// When false, bodies never fall asleep by themselves (World::setAwake still works).
     bool enableSleep = true;
-    /// Speed of the centre of mass below which a body counts as still (m/s), finite and >= 0.
-    /// 0.05 m/s: one step of free fall at 60 Hz already gives g h = 0.16 m/s, so a falling or
-    /// bouncing body is never still for long, while resting contact leaves far less than this.
+    /// A body counts as still when no point of it moves faster than this (m/s), finite and >= 0:
+    /// the speed of its centre of mass plus its angular speed times its extent (the largest
+    /// distance from the centre of mass to a point of its shapes). 0.05 m/s: one step of free
+    /// fall at 60 Hz already gives g h = 0.16 m/s, so a falling or bouncing body is never still
+    /// for long, while resting contact leaves far less than this. Measuring the turn by the speed
+    /// it gives the body's points makes the test fair across sizes: a 15 cm sphere spinning
+    /// slowly about its contact normal (no friction opposes that at a point contact) counts as
+    /// still at 0.3 rad/s, a 10 m beam turning at 0.01 rad/s does not.
     Real linearSleepVelocity = 0.05;
-    /// Angular speed below which a body counts as still (rad/s), finite and >= 0. 0.05 rad/s moves
-    /// a point 1 m from the centre at the linear threshold, so both agree for metre-sized bodies.
-    Real angularSleepVelocity = 0.05;
+    /// And no faster than this (rad/s), finite and >= 0, whatever its size: 0.5 rad/s takes
+    /// 13 s per turn, so a small body that spins visibly stays awake. It binds only for bodies
+    /// smaller than linearSleepVelocity / angularSleepVelocity (10 cm).
+    Real angularSleepVelocity = 0.5;
     /// How long every body of an island must stay still before it falls asleep (s), finite and
     /// > 0. Long against the turning point of a bounce or a swing (a ball rising at 1 m/s is
     /// below 0.05 m/s for 10 ms), short enough that a settled pile stops costing time quickly.

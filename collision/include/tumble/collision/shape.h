@@ -117,4 +117,8 @@ Aabb boundsOf(const Shape& shape, const Transform& pose);
 /// half-space routines instead.
 Vec3 support(const Shape& shape, const Vec3& direction);
 
+/// The largest distance from the shape's local origin to any of its points (m): the radius of
+/// the smallest sphere about the origin that holds it. Infinite for a half-space.
+Real boundingRadius(const Shape& shape);
+
 }  // namespace tumble
