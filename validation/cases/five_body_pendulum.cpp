@@ -8,6 +8,15 @@
 // kinetic plus m g z, measured against its initial value and scaled by what the chain can give
 // up, E0 - E_rest (E_rest: everything hanging straight down at rest), so the drift does not
 // depend on where z = 0 is.
+//
+// One step of 1/240 s is not enough (semi-implicit Euler, first order): the energy deviates by
+// 9.0 % at worst and ends 2.1 % off, and more iterations do not help. Most of it is one whip
+// event at t = 4.37 s, where the ball hands its swing to the links within three steps (the
+// ball's |omega| h falls from 0.19 to 0.002 rad, the middle link's rises to 0.16): the energy
+// spikes by 7.3 % in one step and settles 1.3 % lower than before. No body turns by more than 0.31
+// rad in a step, so it is the fast exchange, not a large rotation, that h does not resolve. The
+// claim is checked with kSubsteps substeps per step (WorldDef::substeps), which for this scene give
+// exactly the trajectory of h / kSubsteps; the one-substep figures are reported as information.
 
 #include <algorithm>
 #include <cmath>
