@@ -44,6 +44,7 @@ SolverSettings parseSolver(JsonObject o) {
 WorldDef parseWorld(JsonObject o) {
     WorldDef w;
     w.timeStep = o.positive("timeStep", w.timeStep);
+    w.substeps = o.integer("substeps", w.substeps, 1);
     w.gravity = o.vec3("gravity", w.gravity);
     w.contactMargin = o.positive("contactMargin", w.contactMargin, true);
     w.aabbMargin = o.positive("aabbMargin", w.aabbMargin, true);

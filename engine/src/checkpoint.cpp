@@ -52,9 +52,9 @@ void field(Ar& a, SolverSettings& x) {
 }
 template <typename Ar>
 void field(Ar& a, WorldDef& x) {
-    fields(a, x.gravity, x.timeStep, x.maxStepsPerAdvance, x.contactMargin, x.aabbMargin, x.solver,
-           x.enableSleep, x.linearSleepVelocity, x.angularSleepVelocity, x.timeToSleep,
-           x.impactSpeedThreshold);
+    fields(a, x.gravity, x.timeStep, x.maxStepsPerAdvance, x.substeps, x.contactMargin,
+           x.aabbMargin, x.solver, x.enableSleep, x.linearSleepVelocity, x.angularSleepVelocity,
+           x.timeToSleep, x.impactSpeedThreshold);
 }
 template <typename Ar>
 void field(Ar& a, SolverStats& x) {
@@ -415,6 +415,8 @@ struct CheckpointAccess {
         all(w.impacts.opened_, w.impacts.bySlot_.size(), false, "impact slot");
         if (!(w.settings.timeStep > 0))
             r.corrupt("time step ", w.settings.timeStep);
+        if (w.settings.substeps < 1)
+            r.corrupt("substeps ", w.settings.substeps);
     }
 
     static const World::Impl& impl(const World& world) { return *world.impl_; }

@@ -142,6 +142,8 @@ void worldDef(const WorldDef& def) {
     if (def.maxStepsPerAdvance < 1) {
         fail("WorldDef.maxStepsPerAdvance = ", def.maxStepsPerAdvance, " must be >= 1");
     }
+    if (def.substeps < 1)
+        fail("WorldDef.substeps = ", def.substeps, " must be >= 1");
     if (!(std::isfinite(def.linearSleepVelocity) && def.linearSleepVelocity >= 0)) {
         fail("WorldDef.linearSleepVelocity = ", def.linearSleepVelocity,
              " (m/s) must be finite and >= 0");

@@ -83,8 +83,6 @@ bool Controllers::remove(JointId joint) {
 void Controllers::apply(const JointStore& joints, BodyStore& bodies, Real h) {
     std::erase_if(records_, [&](const ControllerRecord& r) { return !joints.isValid(r.joint); });
     for (ControllerRecord& record : records_) {
-        record.previousState = record.state;
-        record.previousStarted = record.started;
         const std::uint32_t index = joints.indexOf(record.joint);
         if (joints.state[index].broken) {
             record.state.output = 0;
@@ -118,6 +116,13 @@ void Controllers::apply(const JointStore& joints, BodyStore& bodies, Real h) {
                 bodies.forces[frame.b].torque += frame.rB.cross(force);
             }
         }
+    }
+}
+
+void Controllers::save() {
+    for (ControllerRecord& record : records_) {
+        record.previousState = record.state;
+        record.previousStarted = record.started;
     }
 }
 

@@ -38,7 +38,9 @@ public:
     /// (slider) to the joint's awake dynamic bodies, equal and opposite. Controllers of
     /// destroyed joints are dropped.
     void apply(const JointStore& joints, BodyStore& bodies, Real h);
-    /// A failed step: the integrals and errors go back to what they were before it.
+    /// The start of a step: what restore() returns to (once per step, not per substep).
+    void save();
+    /// A failed step: the integrals and errors go back to what they were at save().
     void restore();
 
 private:

@@ -259,11 +259,14 @@ void World::applyAngularImpulse(BodyId id, const Vec3& impulse) {
                                      (rotation.transpose() * impulse));
 }
 
+// One step of h = N substeps of h / N. Once per step: the pre-step callback, waking what springs
+// and joints link, the rollback state, sleeping and the events. Per substep: the full pipeline
+// (collision included, so contacts see the bodies where the substep starts).
 StepStatus World::step() {
     Impl& w = *impl_;
     w.runPreStep(*this);  // application time, not the engine's: before the clock starts
     const Clock::time_point start = Clock::now();
-    const StepContext context = w.context();
+    w.profile = {};
     if (w.springs.count() > 0)
         wakeSpringLinked(w.springs, w.bodies, w.contacts, w.islands);
     if (w.joints.count() > 0)
@@ -271,50 +274,67 @@ StepStatus World::step() {
     w.bodies.savePreviousMotion();  // awake bodies: the others do not move
     w.springs.saveState();
     w.joints.saveState();
+    w.controllers.save();
 
-    w.profile.forces = timed([&] {
-        w.controllers.apply(w.joints, w.bodies, context.h);
-        w.forceElements.apply(w.springs, w.drag, w.bodies);
-        integrateVelocities(w.bodies, context);
-        w.forceElements.restore(w.bodies);
-    });
-    w.profile.broadphase = timed([&] { w.contacts.updatePairs(); });
-    w.profile.narrowphase = timed([&] { w.contacts.updateContacts(w.shapes, w.bodies, context); });
-    w.profile.islands = timed([&] {
-        w.islands.wakeTouched(w.bodies, w.contacts, context);
-        // A body woken by a touch wakes what it is jointed to before the solve.
-        if (w.joints.count() > 0)
-            wakeJointLinked(w.joints, w.bodies, w.contacts, w.islands, &context);
-    });
-    w.profile.solve = timed([&] {
-        w.solverStats = w.solve.run(w.bodies, w.shapes, w.contacts, w.springs, w.joints, context,
-                                    w.settings.solver);
-    });
-    w.profile.integrate = timed([&] {
-        integratePositions(w.bodies, w.solve.pseudoVelocities(), context);
-        w.solve.projectSprings(w.bodies, w.springs, context, w.settings.solver);
-    });
+    const StepContext context = w.substepContext();
     StepStatus status;
-    w.profile.finalize = timed([&] {
-        status = w.finalize();
-        if (!status.ok()) {
+    for (int substep = 0; substep < w.settings.substeps && status.ok(); ++substep) {
+        if (substep > 0)
+            w.beginSubstep();
+        status = w.substep(context);
+    }
+    w.profile.finalize += timed([&] {
+        if (status.ok()) {
+            w.endStep();
+        } else {
             status.spring = w.springs.strongestOn(status.body);
             w.springs.restoreState();
             w.joints.restoreState();
             w.controllers.restore();
-        } else {
-            w.releaseBrokenJoints();
-            w.impacts.update(w.contacts, w.bodies, w.settings.impactSpeedThreshold,
-                             w.pendingEvents.impact);
         }
     });
     w.profile.sleep = timed([&] {
         if (status.ok())
-            w.islands.updateSleep(w.bodies, w.contacts, w.springs, w.joints, context, w.settings);
+            w.islands.updateSleep(w.bodies, w.contacts, w.springs, w.joints, w.context(),
+                                  w.settings);
     });
     w.publishEvents();
 
     w.profile.total = std::chrono::duration<double>(Clock::now() - start).count();
+    return status;
+}
+
+StepStatus World::Impl::substep(const StepContext& context) {
+    profile.forces += timed([&] {
+        controllers.apply(joints, bodies, context.h);
+        forceElements.apply(springs, drag, bodies);
+        integrateVelocities(bodies, context);
+        forceElements.restore(bodies);
+    });
+    profile.broadphase += timed([&] { contacts.updatePairs(); });
+    profile.narrowphase += timed([&] { contacts.updateContacts(shapes, bodies, context); });
+    profile.islands += timed([&] {
+        islands.wakeTouched(bodies, contacts, context);
+        // A body woken by a touch wakes what it is jointed to before the solve.
+        if (joints.count() > 0)
+            wakeJointLinked(joints, bodies, contacts, islands, &context);
+    });
+    profile.solve += timed([&] {
+        solverStats =
+            solve.run(bodies, shapes, contacts, springs, joints, context, settings.solver);
+    });
+    profile.integrate += timed([&] {
+        integratePositions(bodies, solve.pseudoVelocities(), context);
+        solve.projectSprings(bodies, springs, context, settings.solver);
+    });
+    StepStatus status;
+    profile.finalize += timed([&] {
+        status = checkFinite(context);
+        if (status.ok()) {
+            releaseBrokenJoints();
+            impacts.update(contacts, bodies, settings.impactSpeedThreshold, pendingEvents.impact);
+        }
+    });
     return status;
 }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 #include "body_store.h"
 #include "contact_manager.h"
@@ -52,6 +53,12 @@ struct World::Impl {
     EventLog pendingEvents;  ///< appended to by the stages and the API
     EventLog events;         ///< published when a step returns
     WarningLog warnings;
+    /// With substeps: the motion at the start of the step of the bodies awake before the current
+    /// substep, by position in bodies.awake (append-only within a step), and how many are kept.
+    /// previousMotion holds the start of the substep meanwhile, as the solve and the impacts
+    /// need; the step's start goes back into it when the step ends (rollback, interpolation).
+    std::vector<BodyMotion> stepStart;
+    std::size_t stepStartCount = 0;
 
     /// Points the stages at this world's event and warning logs (after construction or load).
     void connectLogs() {
@@ -60,8 +67,14 @@ struct World::Impl {
         contacts.warnings = &warnings;
     }
 
+    /// The whole step: sleep timers.
     StepContext context() const {
         return {settings.timeStep, 1 / settings.timeStep, settings.gravity};
+    }
+    /// One substep, h / substeps: every stage between the pre-step callback and sleeping.
+    StepContext substepContext() const {
+        const Real h = settings.timeStep / settings.substeps;
+        return {h, 1 / h, settings.gravity};
     }
 
     const BodyMotion& motion(BodyId id) const { return bodies.motion[bodies.indexOf(id)]; }
@@ -144,21 +157,53 @@ struct World::Impl {
         }
     }
 
-    // Checks the new state; on a non-finite body restores the state from before the step.
-    // Sleeping and static bodies did not move: only the awake ones are visited.
-    StepStatus finalize() {
+    // Forces, collision, solve and integration over one substep (world.cpp), each stage's time
+    // added to the profile.
+    StepStatus substep(const StepContext& context);
+
+    // Between two substeps: previousMotion becomes the start of the next substep, after the
+    // step's start of the bodies woken in the last one (still at rest in previousMotion) is
+    // kept in stepStart.
+    void beginSubstep() {
+        stepStart.resize(bodies.awake.size());
+        for (std::size_t k = stepStartCount; k < bodies.awake.size(); ++k)
+            stepStart[k] = bodies.previousMotion[bodies.awake[k]];
+        stepStartCount = bodies.awake.size();
+        bodies.savePreviousMotion();
+    }
+
+    // Checks the substep's new state. On a non-finite body restores the state from before the
+    // step (before its first substep); sleeping and static bodies did not move: only the awake
+    // ones are visited.
+    StepStatus checkFinite(const StepContext& context) {
         for (const std::uint32_t i : bodies.awake) {
             if (!isFinite(bodies.motion[i])) {
-                bodies.restorePreviousMotion();
+                bodies.restorePreviousMotion();  // the substep's start
+                if (stepStartCount > 0) {
+                    for (std::size_t k = 0; k < stepStartCount; ++k) {
+                        bodies.motion[bodies.awake[k]] = stepStart[k];
+                        bodies.previousMotion[bodies.awake[k]] = stepStart[k];
+                    }
+                    stepStartCount = 0;
+                    contacts.refreshBounds(shapes, bodies, context);  // earlier substeps moved them
+                }
                 return {StepStatus::Code::NonFiniteState, bodies.idAt(i), SpringId{}};
             }
         }
+        contacts.refreshBounds(shapes, bodies, context);
+        return {};
+    }
+
+    // After the last substep of a successful step: previousMotion goes back to the step's start
+    // (interpolation spans the step), the applied forces are spent, the clock advances.
+    void endStep() {
+        for (std::size_t k = 0; k < stepStartCount; ++k)
+            bodies.previousMotion[bodies.awake[k]] = stepStart[k];
+        stepStartCount = 0;
         for (const std::uint32_t i : bodies.awake)
             bodies.forces[i] = {};
-        contacts.refreshBounds(shapes, bodies, context());
         time += settings.timeStep;
         stepCount += 1;
-        return {};
     }
 };
 

@@ -216,6 +216,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadFile{"unknown_key.json", "bodies[0].shapes[0].colour: unknown key"},
         BadFile{"wrong_type.json", "bodies[0].position: expected an array of 3 numbers"},
         BadFile{"wrong_type_integer.json", "world.solver.iterations: expected an integer"},
+        BadFile{"zero_substeps.json", "world.substeps: must be >= 1 (got 0)"},
         BadFile{"negative_mass.json", "bodies[0].mass: must be > 0 (got -1)"},
         BadFile{"negative_density.json", "materials.rock.density: density = -2500"},
         BadFile{"negative_friction.json", "materials.ice.friction: friction coefficient mu = -0.1"},

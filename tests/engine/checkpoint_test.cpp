@@ -63,8 +63,9 @@ BodyId addBody(Scene& scene, const Vec3& position, BodyType type = BodyType::Dyn
 
 // A pile that falls asleep, next to a pyramid that a ball falls onto after the checkpoint; the
 // shapes cover every geometry type, and one body has drag.
-Scene pileScene() {
+Scene pileScene(const WorldDef& def = {}) {
     Scene s;
+    s.world = World(def);
     const BodyId ground = addBody(s, Vec3::Zero(), BodyType::Static);
     s.world.createShape(ground, ShapeDef{.geometry = HalfSpace{}});
     // Left: a stack of mixed shapes that settles and sleeps.
@@ -104,11 +105,12 @@ Scene pileScene() {
 
 // A hinge chain (motor, limit, breakable), a slider under a PD controller, a rope, a fixed
 // joint and a ball joint between two bodies that collide with the ground.
-Scene jointScene(const SolverSettings& solver = {}) {
+Scene jointScene(const SolverSettings& solver = {}, int substeps = 1) {
     Scene s;
     WorldDef def;
     def.enableSleep = false;
     def.solver = solver;
+    def.substeps = substeps;
     s.world = World(def);
     const BodyId ground = addBody(s, Vec3::Zero(), BodyType::Static);
     s.world.createShape(ground, ShapeDef{.geometry = HalfSpace{}});
@@ -286,6 +288,17 @@ TEST(Checkpoint, JointsWithMotorLimitsControllerAndBreakingResumeBitwise) {
     EXPECT_EQ(broken, 1);  // the last link's hinge broke after the checkpoint
 }
 
+// Substeps: the rollback and interpolation state is the step's start, the controllers' state
+// is saved once per step; a resumed world must take the substep count from the checkpoint.
+TEST(Checkpoint, PileAndJointsWithTwoSubstepsResumeBitwise) {
+    Scene pile = pileScene(WorldDef{.substeps = 2});
+    run(pile.world, 100);
+    EXPECT_GE(sleepingCount(pile.world, pile.bodies), 4);
+    expectBitwiseResume(pile, 0, 150);
+    Scene joints = jointScene({}, 2);
+    expectBitwiseResume(joints, 45, 200);
+}
+
 // The joints' solver choices change every step's numbers: a resumed world that fell back to
 // the defaults would diverge at once.
 TEST(Checkpoint, JointsUnderNonDefaultSolverSettingsResumeBitwise) {
@@ -302,6 +315,7 @@ TEST(Checkpoint, EverySettingRoundTrips) {
     def.gravity = Vec3(0.5, -1, -3);
     def.timeStep = 1.0 / 90;
     def.maxStepsPerAdvance = 3;
+    def.substeps = 3;
     def.contactMargin = 0.03;
     def.aabbMargin = 0.07;
     def.enableSleep = false;
@@ -332,6 +346,7 @@ TEST(Checkpoint, EverySettingRoundTrips) {
     EXPECT_EQ(r.gravity, def.gravity);
     EXPECT_EQ(r.timeStep, def.timeStep);
     EXPECT_EQ(r.maxStepsPerAdvance, def.maxStepsPerAdvance);
+    EXPECT_EQ(r.substeps, def.substeps);
     EXPECT_EQ(r.contactMargin, def.contactMargin);
     EXPECT_EQ(r.aabbMargin, def.aabbMargin);
     EXPECT_EQ(r.enableSleep, def.enableSleep);

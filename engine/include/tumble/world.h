@@ -39,6 +39,11 @@ struct WorldDef {
     Vec3 gravity = Vec3(0, 0, -9.81);  ///< (m/s^2), finite
     Real timeStep = 1.0 / 60.0;        ///< fixed step h (s), finite and > 0
     int maxStepsPerAdvance = 8;        ///< advance() runs at most this many steps per call, >= 1
+    /// Substeps per step, >= 1: step() advances timeStep as this many substeps of timeStep /
+    /// substeps, each running forces, collision, solve and integration. The pre-step callback,
+    /// sleeping and the publication of events happen once per step. More substeps resolve fast
+    /// motion (a whipping chain) that one step of h cannot, at the cost of a full step each.
+    int substeps = 1;
     /// Speculative contact distance (m), >= 0: pairs closer than this plus the distance they can
     /// close in one step (h |v_rel|) get contact points, so fast bodies are stopped before they
     /// pass through each other.
@@ -89,6 +94,7 @@ struct Profile {
     double solve = 0;        ///< contact rows, PGS, restitution, split impulse
     double integrate = 0;    ///< velocities -> positions and orientations
     double finalize = 0;     ///< finiteness check, force clearing, bounds
+                             ///< (each stage summed over the step's substeps)
     double sleep = 0;        ///< sleep timers, union-find of islands, islands falling asleep
     double total = 0;
 };
@@ -317,7 +323,8 @@ public:
     Real time() const;                ///< simulated time (s)
     std::uint64_t stepCount() const;  ///< steps taken so far
     const Profile& profile() const;   ///< stage timings of the last step
-    /// Iterations used, largest complementarity residual and deepest penetration of the last step.
+    /// Iterations used, largest complementarity residual and deepest penetration of the last step
+    /// (of its last substep).
     const SolverStats& solverStats() const;
     /// Legal input the engine is known to handle poorly, found so far (tumble/warnings.h): raised
     /// when a shape, spring or joint is made and when a contact begins, once per cause, kept
