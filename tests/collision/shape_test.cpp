@@ -144,8 +144,9 @@ TEST(BoundingRadius, IsTheFarthestSupportPoint) {
                                      std::hypot(0.14, 0.1), -1};
     for (std::size_t i = 0; i < shapes.size(); ++i) {
         const Real radius = boundingRadius(shapes[i]);
-        if (exact[i] > 0)
+        if (exact[i] > 0) {
             EXPECT_NEAR(radius, exact[i], 1e-15) << "shape " << i;
+        }
         Real farthest = 0;
         for (int trial = 0; trial < 20000; ++trial)
             farthest = std::max(farthest, support(shapes[i], randomDirection(rng)).norm());
