@@ -7,7 +7,11 @@
 // process's resident memory are sampled. Memory must not grow after the warm-up (the first
 // quarter: bodies are still being created then). Prints a summary and exits 1 on any failure.
 //
-//     tumble-soak [--bodies 5000] [--minutes 10] [--net 20]
+// The floor grows with the body count: by default as much per body as the `rain` scene has
+// (12.25 m^2 for 216 bodies), so the pile stays one or two bodies deep as there; a smaller
+// --floor-per-body piles them deeper (0.01 m^2: about 2 m deep, one island of every body).
+//
+//     tumble-soak [--bodies 5000] [--minutes 10] [--net 20] [--floor-per-body 0.057]
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -70,12 +74,16 @@ int main(int argc, char** argv) {
     app.add_option("--net-damping", netDamping,
                    "drag on each net node, per unit of its mass (1/s); 0: none")
         ->check(CLI::NonNegativeNumber);
+    double floorPerBody = 12.25 / 216;
+    app.add_option("--floor-per-body", floorPerBody,
+                   "container floor per body (m^2); default: the rain scene's")
+        ->check(CLI::PositiveNumber);
     CLI11_PARSE(app, argc, argv);
 
     const Real h = 1.0 / 60.0;
     World world(WorldDef{.timeStep = h});
-    // Container: 0.01 m^2 of floor per body, so the pile is a few bodies deep.
-    const Real half = std::max<Real>(2, 0.5 * std::sqrt(0.01 * bodies) * 2 / 2);
+    // Container: a square floor of floorPerBody per body, at least 4 m wide.
+    const Real half = std::max<Real>(2, 0.5 * std::sqrt(floorPerBody * bodies));
     BodyDef fixed{.type = BodyType::Static};
     const BodyId container = world.createBody(fixed);
     world.createShape(container, ShapeDef{.geometry = HalfSpace{}});
