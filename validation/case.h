@@ -69,6 +69,7 @@ ValidationCase pdArmCase();
 ValidationCase stringCase();
 ValidationCase stringCostCase();
 ValidationCase stackCostCase();
+ValidationCase rollingCase();
 
 /// Every case, in the order the runner lists them.
 inline std::vector<ValidationCase> allCases() {
@@ -79,10 +80,14 @@ inline std::vector<ValidationCase> allCases() {
             tautStringCase(), hangingChainCase(), stiffNetCase(),
             pendulumCase(),   jointChainCase(),   fiveBodyPendulumCase(),
             motorCase(),      pdArmCase(),        stringCase(),
-            stringCostCase(), stackCostCase()};
+            stringCostCase(), stackCostCase(),    rollingCase()};
 }
 
 /// Least-squares slope of log(y) against log(x): the order of convergence.
 double logLogSlope(const std::vector<double>& x, const std::vector<double>& y);
+/// Least-squares slope of y against x.
+double fitSlope(const std::vector<double>& x, const std::vector<double>& y);
+/// Least-squares acceleration a of s(t) = s0 + v0 t + a t^2 / 2 through the samples.
+double fitAcceleration(const std::vector<double>& t, const std::vector<double>& s);
 
 }  // namespace tumble::validation

@@ -95,6 +95,16 @@ Material parseMaterial(const Json& value, const std::string& path, const Materia
     m.restitution = o.number("restitution", m.restitution);
     if (m.restitution < 0 || m.restitution > 1)
         failAt(o.pathOf("restitution"), "restitution e = ", m.restitution, " must be in [0, 1]");
+    m.spinningFriction = o.number("spinningFriction", m.spinningFriction);
+    if (m.spinningFriction < 0) {
+        failAt(o.pathOf("spinningFriction"), "spinning friction length = ", m.spinningFriction,
+               " m must be >= 0");
+    }
+    m.rollingFriction = o.number("rollingFriction", m.rollingFriction);
+    if (m.rollingFriction < 0) {
+        failAt(o.pathOf("rollingFriction"), "rolling friction length = ", m.rollingFriction,
+               " m must be >= 0");
+    }
     m.density = o.number("density", m.density);
     if (m.density <= 0)
         failAt(o.pathOf("density"), "density = ", m.density, " kg/m^3 must be > 0");

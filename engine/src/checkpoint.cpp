@@ -142,7 +142,8 @@ void field(Ar& a, Shape& shape) {
 template <typename Ar>
 void field(Ar& a, ShapeDef& x) {
     fields(a, x.geometry, x.localPose, x.material.friction, x.material.restitution,
-           x.material.density, x.filter.category, x.filter.mask, x.updateBodyMass);
+           x.material.spinningFriction, x.material.rollingFriction, x.material.density,
+           x.filter.category, x.filter.mask, x.updateBodyMass);
 }
 template <typename Ar>
 void field(Ar& a, ShapeRecord& x) {
@@ -161,7 +162,8 @@ void field(Ar& a, Manifold& x) {
 }
 template <typename Ar>
 void field(Ar& a, Contact& x) {
-    fields(a, x.shapeA, x.shapeB, x.bodyA, x.bodyB, x.manifold, x.normalImpulse, x.tangentImpulse);
+    fields(a, x.shapeA, x.shapeB, x.bodyA, x.bodyB, x.manifold, x.normalImpulse, x.tangentImpulse,
+           x.angularImpulse);
 }
 
 template <typename Ar>

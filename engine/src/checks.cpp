@@ -110,6 +110,8 @@ void bodyDef(const BodyDef& def) {
 
 void material(const Material& m, std::string_view what) {
     nonNegative(m.friction, std::string(what) + ".friction");
+    nonNegative(m.spinningFriction, std::string(what) + ".spinningFriction");
+    nonNegative(m.rollingFriction, std::string(what) + ".rollingFriction");
     if (!(m.restitution >= 0 && m.restitution <= 1)) {
         fail(what, ".restitution = ", m.restitution, " must be in [0, 1]");
     }

@@ -40,6 +40,9 @@ void carryImpulses(const Contact& previous, Contact& next) {
         next.normalImpulse[i] = match >= 0 ? previous.normalImpulse[match] : 0;
         next.tangentImpulse[i] = match >= 0 ? previous.tangentImpulse[match] : Vec3::Zero();
     }
+    next.angularImpulse = next.manifold.pointCount > 0 && previous.manifold.pointCount > 0
+                              ? previous.angularImpulse
+                              : Vec3::Zero();
 }
 
 ContactEvent touchEvent(const Contact& contact) {
@@ -285,6 +288,7 @@ void ContactManager::collideActive(const ShapeStore& shapes, BodyStore& bodies,
         next.manifold = Manifold{};
         next.normalImpulse = {};
         next.tangentImpulse.fill(Vec3::Zero());
+        next.angularImpulse.setZero();
         const Vec3 relativeVelocity =
             bodies.motion[indexB].linearVelocity - bodies.motion[indexA].linearVelocity;
         const Real margin = contactMargin + context.h * relativeVelocity.norm();

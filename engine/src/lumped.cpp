@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "checks.h"
 #include "tumble/core/error.h"
 #include "tumble/world.h"
 
@@ -20,14 +21,7 @@ void checkNode(const NodeDef& node, const std::string& where) {
         fail(where, ".node.mass = ", node.mass, " (kg) must be finite and > 0");
     if (!(std::isfinite(node.radius) && node.radius > 0))
         fail(where, ".node.radius = ", node.radius, " (m) must be finite and > 0");
-    if (!(std::isfinite(node.material.friction) && node.material.friction >= 0)) {
-        fail(where, ".node.material.friction = ", node.material.friction,
-             " must be finite and >= 0");
-    }
-    if (!(node.material.restitution >= 0 && node.material.restitution <= 1)) {
-        fail(where, ".node.material.restitution = ", node.material.restitution,
-             " must be in [0, 1]");
-    }
+    checks::material(node.material, where + ".node.material");
 }
 
 void checkThread(const ThreadDef& thread, const std::string& where) {

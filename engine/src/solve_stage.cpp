@@ -82,6 +82,9 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
         c.normal = contact.manifold.normal;
         c.friction = mixFriction(materialA.friction, materialB.friction);
         c.restitution = mixRestitution(materialA.restitution, materialB.restitution);
+        c.spinningFriction = std::max(materialA.spinningFriction, materialB.spinningFriction);
+        c.rollingFriction = std::max(materialA.rollingFriction, materialB.rollingFriction);
+        c.angularImpulse = contact.angularImpulse;
         c.pointCount = contact.manifold.pointCount;
         for (int i = 0; i < c.pointCount; ++i) {
             const ContactPoint& point = contact.manifold.points[i];
@@ -133,6 +136,7 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
     for (std::size_t j = 0; j < constraints_.size(); ++j) {
         const ContactConstraint& c = constraints_[j];
         Contact& contact = contacts.contact(constraintContact_[j]);
+        contact.angularImpulse = c.angularImpulse;
         for (int i = 0; i < c.pointCount; ++i) {
             contact.normalImpulse[i] = c.points[i].normalImpulse;
             contact.tangentImpulse[i] = c.points[i].tangentImpulse[0] * c.tangents[0] +

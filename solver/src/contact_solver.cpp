@@ -38,6 +38,36 @@ void applyPair(SolverBody& a, SolverBody& b, const ContactConstraintPoint& p, co
     applyImpulse(b, impulse, p.rB);
 }
 
+// A pure angular impulse L (N m s) on B, -L on A.
+void applyAngular(SolverBody& a, SolverBody& b, const Vec3& impulse) {
+    a.angularVelocity -= a.inverseInertia * impulse;
+    b.angularVelocity += b.inverseInertia * impulse;
+}
+
+// The angular rows' effective masses. K = T'(IA^-1 + IB^-1) T for the relative spin about the
+// axes T per unit angular impulse; bodies that cannot turn (static, translation-only) give none.
+void prepareAngularFriction(const SolverBody& a, const SolverBody& b, ContactConstraint& c,
+                            bool warmStart) {
+    const Mat3 inverseInertia = a.inverseInertia + b.inverseInertia;
+    const Real kSpin = c.normal.dot(inverseInertia * c.normal);
+    c.spinMass = c.spinningFriction > 0 && kSpin > 0 ? 1 / kSpin : 0;
+    c.rollingActive = false;
+    if (c.rollingFriction > 0) {
+        Mat2 kRolling;
+        for (int r = 0; r < 2; ++r) {
+            for (int col = 0; col < 2; ++col)
+                kRolling(r, col) = c.tangents[r].dot(inverseInertia * c.tangents[col]);
+        }
+        c.rollingActive = c.rolling.set(kRolling);
+    }
+    // Keep only the cached parts that have rows this step.
+    const Real spinPart = c.spinMass > 0 ? c.normal.dot(c.angularImpulse) : 0;
+    const Vec3 rollingPart =
+        c.rollingActive ? Vec3(c.angularImpulse - c.normal.dot(c.angularImpulse) * c.normal)
+                        : Vec3::Zero();
+    c.angularImpulse = warmStart ? Vec3(spinPart * c.normal + rollingPart) : Vec3::Zero();
+}
+
 // K = (1/mA + 1/mB) 1 - [rA]x IA^-1 [rA]x - [rB]x IB^-1 [rB]x: velocity change at the point per
 // unit impulse. Its projection on the tangent plane is the coupled friction block.
 Mat3 pointMassMatrix(const SolverBody& a, const SolverBody& b, const ContactConstraintPoint& p) {
@@ -105,16 +135,15 @@ Impact impactWithinStep(Real s, Real vEnd, Real a, Real h) {
 // Sliding case: a trust-region problem; lambda(nu) = (K + nu 1)^-1 b with b = K old - vt, and the
 // multiplier nu >= 0 solves |lambda(nu)| = r. Newton on 1/|lambda(nu)| - 1/r, which is concave
 // and increasing in nu, converges monotonically from nu = 0 (More & Sorensen).
-Vec2 solveFrictionDisc(const ContactConstraintPoint& p, const Vec2& old, const Vec2& vt,
-                       Real radius) {
+Vec2 solveDisc(const DiscBlock& k, const Vec2& old, const Vec2& vt, Real radius) {
     if (radius <= 0)
         return Vec2::Zero();
-    const Vec2 b = p.tangentBlock * old - vt;
-    const Vec2 free = p.tangentInverse * b;
+    const Vec2 b = k.block * old - vt;
+    const Vec2 free = k.inverse * b;
     if (free.squaredNorm() <= radius * radius)
         return free;
-    const Vec2& moments = p.tangentMoments;
-    const Vec2 c = p.tangentAxes.transpose() * b;
+    const Vec2& moments = k.moments;
+    const Vec2 c = k.axes.transpose() * b;
     Real nu = 0;
     for (int iteration = 0; iteration < 20; ++iteration) {
         const Vec2 q = c.cwiseQuotient(moments + Vec2::Constant(nu));  // lambda in the eigenbasis
@@ -127,23 +156,31 @@ Vec2 solveFrictionDisc(const ContactConstraintPoint& p, const Vec2& old, const V
         if (std::abs(step) <= 1e-12 * (nu + moments.maxCoeff()))
             break;
     }
-    const Vec2 lambda = p.tangentAxes * c.cwiseQuotient(moments + Vec2::Constant(nu));
+    const Vec2 lambda = k.axes * c.cwiseQuotient(moments + Vec2::Constant(nu));
     return lambda * (radius / lambda.norm());  // on the rim to rounding
 }
 
-// Eigen-decomposition of a symmetric 2x2 matrix in closed form: k = axes diag(moments) axes'.
-void decompose(const Mat2& k, Vec2& moments, Mat2& axes) {
+}  // namespace
+
+// The eigen-decomposition in closed form: k = axes diag(moments) axes'.
+bool DiscBlock::set(const Mat2& k) {
     const Real mean = 0.5 * (k(0, 0) + k(1, 1));
     const Real half = 0.5 * (k(0, 0) - k(1, 1));
     const Real radius = std::hypot(half, k(0, 1));
+    // Singular (a body that cannot turn about these axes): no rows.
+    if (!(mean - radius > 1e-12 * mean)) {
+        *this = DiscBlock{};
+        return false;
+    }
     const Real angle = 0.5 * std::atan2(k(0, 1), half);  // of the larger moment's axis
     const Real cs = std::cos(angle);
     const Real sn = std::sin(angle);
+    block = k;
+    inverse = k.inverse();
     moments = Vec2(mean - radius, mean + radius);
     axes << -sn, cs, cs, sn;
+    return true;
 }
-
-}  // namespace
 
 std::array<Vec3, 2> frictionBasis(const Vec3& n) {
     // The reference axis is the one least aligned with n, so the basis is a continuous function
@@ -306,13 +343,11 @@ void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
                 for (int col = 0; col < 2; ++col)
                     kTangent(r, col) = c.tangents[r].dot(k * c.tangents[col]);
             }
-            p.tangentBlock = kTangent;
             p.angularA = p.rA.cross(c.normal);
             p.angularB = p.rB.cross(c.normal);
             p.angularImpulseA = a.inverseInertia * p.angularA;
             p.angularImpulseB = b.inverseInertia * p.angularB;
-            p.tangentInverse = kTangent.inverse();
-            decompose(kTangent, p.tangentMoments, p.tangentAxes);
+            p.tangent.set(kTangent);
             for (int r = 0; r < 2; ++r) {
                 p.tangentAngularA[r] = p.rA.cross(c.tangents[r]);
                 p.tangentAngularB[r] = p.rB.cross(c.tangents[r]);
@@ -349,6 +384,7 @@ void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
                                       p.angularB.dot(q.angularImpulseB);
             }
         }
+        prepareAngularFriction(a, b, c, settings.warmStart);
     }
     // Warm start only once every approach speed is measured: applied point by point above, the
     // cached impulses of earlier contacts leaked into the approach speeds of later ones, and a
@@ -362,6 +398,7 @@ void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
                       p.normalImpulse * c.normal + p.tangentImpulse[0] * c.tangents[0] +
                           p.tangentImpulse[1] * c.tangents[1]);
         }
+        applyAngular(a, b, c.angularImpulse);
     }
 }
 
@@ -389,7 +426,7 @@ Real ContactSolver::solveVelocitySweep(std::span<SolverBody> bodies,
                 const Real limit = c.friction * p.normalImpulse;
                 Vec2 next;
                 if (settings.friction == FrictionModel::Coupled) {
-                    next = old + omega * (solveFrictionDisc(p, old, vt, limit) - old);
+                    next = old + omega * (solveDisc(p.tangent, old, vt, limit) - old);
                 } else {
                     next = (old - omega * (p.tangentMass.topLeftCorner<2, 2>() * vt))
                                .cwiseMax(-limit)
@@ -404,12 +441,45 @@ Real ContactSolver::solveVelocitySweep(std::span<SolverBody> bodies,
                 b.angularVelocity +=
                     delta.x() * p.tangentImpulseB[0] + delta.y() * p.tangentImpulseB[1];
                 p.tangentImpulse = {next.x(), next.y()};
-                largestChange = std::max(largestChange, (p.tangentBlock * delta).norm());
+                largestChange = std::max(largestChange, (p.tangent.block * delta).norm());
             }
         }
+        if (c.spinMass > 0 || c.rollingActive)
+            solveAngularFriction(a, b, c);
         solveNormals(a, b, c, settings, inverseH, bias, largestChange);
     }
     return largestChange;
+}
+
+// Torsion and rolling resistance, with the normal impulses of the last sweep like the linear
+// friction: the spin about the normal driven to zero within +-spinningFriction x sum(lambda_n),
+// the relative spin about the tangents within the disc of radius rollingFriction x
+// sum(lambda_n), solved exactly as the point friction is (solveDisc). Their changes in angular
+// velocity are not counted against the tolerance, which is in m/s.
+void ContactSolver::solveAngularFriction(SolverBody& a, SolverBody& b, ContactConstraint& c) const {
+    Real normalImpulse = 0;
+    for (int i = 0; i < c.pointCount; ++i)
+        normalImpulse += c.points[i].normalImpulse;
+    Vec3 change = Vec3::Zero();
+    if (c.spinMass > 0) {
+        const Real spin = c.normal.dot(b.angularVelocity - a.angularVelocity);
+        const Real old = c.normal.dot(c.angularImpulse);
+        const Real limit = c.spinningFriction * normalImpulse;
+        const Real next = std::clamp(old - c.spinMass * spin, -limit, limit);
+        change += (next - old) * c.normal;
+        applyAngular(a, b, (next - old) * c.normal);
+    }
+    if (c.rollingActive) {
+        const Vec3 relative = b.angularVelocity - a.angularVelocity;
+        const Vec2 roll(c.tangents[0].dot(relative), c.tangents[1].dot(relative));
+        const Vec2 old(c.tangents[0].dot(c.angularImpulse), c.tangents[1].dot(c.angularImpulse));
+        const Vec2 next = solveDisc(c.rolling, old, roll, c.rollingFriction * normalImpulse);
+        const Vec3 delta =
+            (next.x() - old.x()) * c.tangents[0] + (next.y() - old.y()) * c.tangents[1];
+        change += delta;
+        applyAngular(a, b, delta);
+    }
+    c.angularImpulse += change;
 }
 
 void ContactSolver::solveNormals(SolverBody& a, SolverBody& b, ContactConstraint& c,

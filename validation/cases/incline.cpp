@@ -30,20 +30,6 @@ constexpr double kFitStart = 0.5;   // (s)
 constexpr double kFitEnd = 3.0;     // (s)
 constexpr int kStepsPerSecond = 60;
 
-/// Least-squares acceleration a of s(t) = s0 + v0 t + a t^2 / 2.
-double fitAcceleration(const std::vector<double>& t, const std::vector<double>& s) {
-    Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
-    for (std::size_t i = 0; i < t.size(); ++i) {
-        // Centre time for conditioning; the acceleration does not depend on the origin of t.
-        const double tc = t[i] - 0.5 * (t.front() + t.back());
-        const Eigen::Vector3d basis(1, tc, 0.5 * tc * tc);
-        normal += basis * basis.transpose();
-        rhs += basis * s[i];
-    }
-    return normal.ldlt().solve(rhs)(2);
-}
-
 struct Slide {
     double creep = 0;         // largest displacement along the plane from release (m)
     double acceleration = 0;  // fitted down-slope acceleration (m/s^2)

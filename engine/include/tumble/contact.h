@@ -26,6 +26,9 @@ struct Contact {
     std::array<Vec3, Manifold::kMaxPoints> tangentImpulse{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(),
                                                           Vec3::Zero()};
     static_assert(Manifold::kMaxPoints == 4, "tangentImpulse lists one zero per point");
+    /// Accumulated torsion and rolling-resistance impulse on body B (N m s), world frame; the
+    /// manifold's, carried while it keeps points.
+    Vec3 angularImpulse = Vec3::Zero();
 };
 
 }  // namespace tumble

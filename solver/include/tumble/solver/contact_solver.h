@@ -28,6 +28,13 @@
 /// - Each manifold's normal rows are solved as one block (normal_block.h): exact, no order bias.
 /// - Speculative contacts: a point with separation s > 0 only demands v_n >= -s / h: the bodies
 ///   may close the gap within the step but not pass it, so fast bodies do not tunnel.
+/// - Spinning and rolling friction (optional, per manifold): a rigid point contact cannot resist
+///   a relative spin about its normal, nor rolling, so a ball dropped into a pile spins and rolls
+///   for ever and keeps the pile awake. A real contact is a patch: its torsional friction is
+///   limited to spinningFriction x normal force, its rolling resistance to rollingFriction x
+///   normal force (lengths, as Bullet's spinning and rolling friction and ODE's rho). One scalar
+///   row about the normal, clamped; two rows about the tangents solved as a disc like the
+///   linear friction. Only the angular velocities enter; rows exist only when the length > 0.
 ///
 /// Works on flat arrays of SolverBody (velocities, inverse masses) and ContactConstraint (indices
 /// into the body array); knows no shapes. Deterministic: constraints are solved in array order.
@@ -99,6 +106,19 @@ std::array<Vec3, 2> frictionBasis(const Vec3& n);
 /// Refuses (InvalidArgument) settings outside the ranges documented on each field.
 void checkSolverSettings(const SolverSettings& settings);
 
+/// A symmetric positive definite 2x2 block K (velocity change per unit impulse of two coupled
+/// rows) with what the solve of an impulse limited to a disc needs: friction at a point (linear)
+/// and rolling resistance (angular).
+struct DiscBlock {
+    Eigen::Matrix<Real, 2, 2> block = Eigen::Matrix<Real, 2, 2>::Zero();    ///< K
+    Eigen::Matrix<Real, 2, 2> inverse = Eigen::Matrix<Real, 2, 2>::Zero();  ///< K^-1
+    /// K = axes diag(moments) axes': its eigen-decomposition, for the case on the rim
+    Eigen::Matrix<Real, 2, 1> moments = Eigen::Matrix<Real, 2, 1>::Zero();
+    Eigen::Matrix<Real, 2, 2> axes = Eigen::Matrix<Real, 2, 2>::Identity();
+    /// Fills the members from K; false (and all zero) when K is singular.
+    bool set(const Eigen::Matrix<Real, 2, 2>& k);
+};
+
 struct ContactConstraintPoint {
     Vec3 rA = Vec3::Zero();  ///< from A's centre of mass to the point (world, m)
     Vec3 rB = Vec3::Zero();  ///< from B's centre of mass to the point (world, m)
@@ -107,11 +127,8 @@ struct ContactConstraintPoint {
     std::array<Real, 2> tangentImpulse{};  ///< along tangent1, tangent2 (N s)
 
     // Filled by prepare().
-    Real normalMass = 0;  ///< effective mass along the normal (kg)
-    Eigen::Matrix<Real, 2, 2> tangentBlock =
-        Eigen::Matrix<Real, 2,
-                      2>::Zero();     ///< K on the
-                                      ///< tangent plane: slip velocity per unit impulse (1/kg)
+    Real normalMass = 0;              ///< effective mass along the normal (kg)
+    DiscBlock tangent;                ///< K on the tangent plane: slip velocity per impulse (1/kg)
     Mat3 tangentMass = Mat3::Zero();  ///< diagonal: 1 / K_tt of each tangent row (kg), box model
     Vec3 angularA = Vec3::Zero();     ///< rA x n: A's angular normal Jacobian (m)
     Vec3 angularB = Vec3::Zero();     ///< rB x n (m)
@@ -121,11 +138,6 @@ struct ContactConstraintPoint {
     std::array<Vec3, 2> tangentAngularB{};  ///< rB x t_k (m)
     std::array<Vec3, 2> tangentImpulseA{};  ///< IA^-1 (rA x t_k)
     std::array<Vec3, 2> tangentImpulseB{};  ///< IB^-1 (rB x t_k)
-    Eigen::Matrix<Real, 2, 2> tangentInverse =
-        Eigen::Matrix<Real, 2, 2>::Zero();  ///< tangentBlock^-1 (kg)
-    /// tangentBlock = axes diag(moments) axes': its eigen-decomposition, for the sliding case
-    Eigen::Matrix<Real, 2, 1> tangentMoments = Eigen::Matrix<Real, 2, 1>::Zero();
-    Eigen::Matrix<Real, 2, 2> tangentAxes = Eigen::Matrix<Real, 2, 2>::Identity();
     /// Normal relative acceleration from the forces of this step (gravity...), (m/s^2); with it
     /// the solver finds when within the step, and how fast, a speculative point hits (see
     /// applyRestitution). Zero when the caller does not know it.
@@ -146,6 +158,16 @@ struct ContactConstraint {
     Vec3 normal = Vec3::UnitZ();  ///< from A to B, unit
     Real friction = 0;            ///< Coulomb mu, >= 0 (no friction rows when 0)
     Real restitution = 0;         ///< Newton's e, in [0, 1]
+    /// Torsional friction length (m), >= 0: the torque about the normal is limited to this times
+    /// the manifold's normal force (a contact patch of radius a under uniform pressure and
+    /// Coulomb mu has 2/3 mu a). No row when 0.
+    Real spinningFriction = 0;
+    /// Rolling resistance length (m), >= 0: the torque opposing rolling (relative spin about
+    /// the tangents) is limited to this times the normal force. No rows when 0.
+    Real rollingFriction = 0;
+    /// Accumulated torsion and rolling-resistance impulse on B, -this on A (N m s), world frame:
+    /// warm start in, result out.
+    Vec3 angularImpulse = Vec3::Zero();
     int pointCount = 0;
     std::array<ContactConstraintPoint, 4> points;
 
@@ -153,6 +175,9 @@ struct ContactConstraint {
     std::array<Vec3, 2> tangents{Vec3::UnitX(), Vec3::UnitY()};
     /// K_ij: normal velocity change at point i per unit normal impulse at point j (1/kg).
     Eigen::Matrix<Real, 4, 4> normalBlock = Eigen::Matrix<Real, 4, 4>::Zero();
+    Real spinMass = 0;           ///< 1 / n'(IA^-1 + IB^-1) n (kg m^2); 0: no spinning row
+    DiscBlock rolling;           ///< K of the relative spin about the tangents (1/(kg m^2))
+    bool rollingActive = false;  ///< rolling rows solved this step
 };
 
 struct SolverStats {
@@ -190,6 +215,7 @@ private:
                   Real bias, int sweeps);
     Real solveVelocitySweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                             const SolverSettings& settings, Real inverseH, Real bias) const;
+    void solveAngularFriction(SolverBody& a, SolverBody& b, ContactConstraint& c) const;
     void solveNormals(SolverBody& a, SolverBody& b, ContactConstraint& c,
                       const SolverSettings& settings, Real inverseH, Real bias,
                       Real& largestChange) const;
