@@ -220,6 +220,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadFile{"negative_mass.json", "bodies[0].mass: must be > 0 (got -1)"},
         BadFile{"negative_density.json", "materials.rock.density: density = -2500"},
         BadFile{"negative_friction.json", "materials.ice.friction: friction coefficient mu = -0.1"},
+        BadFile{"negative_rolling_friction.json",
+                "materials.rubber.rollingFriction: rolling friction length = -0.001 m"},
         BadFile{"zero_box.json", "bodies[1].shapes[0].halfExtents: every half extent must be > 0"},
         BadFile{"restitution.json",
                 "bodies[0].shapes[0].material.restitution: restitution e = 1.5"},
