@@ -164,9 +164,9 @@ int main(int argc, char** argv) {
                     world.createBody(def),
                     ShapeDef{.geometry = shapeFor(created),
                              .material = Material{.friction = 0.5,
+                                                  .density = 700,
                                                   .spinningFriction = spinningFriction,
-                                                  .rollingFriction = rollingFriction,
-                                                  .density = 700}});
+                                                  .rollingFriction = rollingFriction}});
             }
         }
         if (!netDropped && created == bodies && i % stepsPerSecond == 0) {

@@ -142,7 +142,7 @@ void field(Ar& a, Shape& shape) {
 template <typename Ar>
 void field(Ar& a, ShapeDef& x) {
     fields(a, x.geometry, x.localPose, x.material.friction, x.material.restitution,
-           x.material.spinningFriction, x.material.rollingFriction, x.material.density,
+           x.material.density, x.material.spinningFriction, x.material.rollingFriction,
            x.filter.category, x.filter.mask, x.updateBodyMass);
 }
 template <typename Ar>

@@ -108,13 +108,17 @@ void bodyDef(const BodyDef& def) {
     }
 }
 
-void material(const Material& m, std::string_view what) {
+void surface(const Material& m, std::string_view what) {
     nonNegative(m.friction, std::string(what) + ".friction");
     nonNegative(m.spinningFriction, std::string(what) + ".spinningFriction");
     nonNegative(m.rollingFriction, std::string(what) + ".rollingFriction");
     if (!(m.restitution >= 0 && m.restitution <= 1)) {
         fail(what, ".restitution = ", m.restitution, " must be in [0, 1]");
     }
+}
+
+void material(const Material& m, std::string_view what) {
+    surface(m, what);
     if (!(std::isfinite(m.density) && m.density > 0)) {
         fail(what, ".density = ", m.density, " (kg/m^3) must be finite and > 0");
     }

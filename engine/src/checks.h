@@ -15,6 +15,9 @@ void unitQuaternion(const Quat& q, std::string_view what);
 void nonNegative(Real value, std::string_view what);
 void massProperties(const MassProperties& mass, std::string_view what);
 void bodyDef(const BodyDef& def);
+/// The contact properties of a material (friction, restitution, the friction lengths).
+void surface(const Material& m, std::string_view what);
+/// surface() and the density.
 void material(const Material& m, std::string_view what);
 void shapeDef(const ShapeDef& def, BodyType bodyType);
 void timeStep(Real h, std::string_view what);

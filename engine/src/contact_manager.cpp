@@ -11,6 +11,8 @@ namespace {
 // A persisting point whose feature id changed (e.g. a clip vertex renamed) still inherits its
 // impulse when it lies this close to a point of the last step (m).
 constexpr Real kMatchDistance = 0.01;
+// cos(18 deg): a manifold whose normal turned less than this keeps its angular impulse.
+constexpr Real kSamePatchCosine = 0.95;
 
 Transform bodyTransform(const BodyStore& bodies, std::uint32_t index) {
     const BodyMotion& m = bodies.motion[index];
@@ -26,6 +28,7 @@ Aabb sweptBounds(const Aabb& tight, const Vec3& velocity, Real h) {
 }
 
 void carryImpulses(const Contact& previous, Contact& next) {
+    bool matched = false;
     for (int i = 0; i < next.manifold.pointCount; ++i) {
         const ContactPoint& point = next.manifold.points[i];
         int match = -1;
@@ -39,10 +42,14 @@ void carryImpulses(const Contact& previous, Contact& next) {
         }
         next.normalImpulse[i] = match >= 0 ? previous.normalImpulse[match] : 0;
         next.tangentImpulse[i] = match >= 0 ? previous.tangentImpulse[match] : Vec3::Zero();
+        matched = matched || match >= 0;
     }
-    next.angularImpulse = next.manifold.pointCount > 0 && previous.manifold.pointCount > 0
-                              ? previous.angularImpulse
-                              : Vec3::Zero();
+    // The manifold's torsion and rolling impulse belongs to its patch: kept while a point
+    // persists and the normal has turned less than about 18 deg (else a spin impulse would come
+    // back as a rolling one). The solver clamps it to this step's limits.
+    const bool samePatch =
+        matched && previous.manifold.normal.dot(next.manifold.normal) > kSamePatchCosine;
+    next.angularImpulse = samePatch ? previous.angularImpulse : Vec3::Zero();
 }
 
 ContactEvent touchEvent(const Contact& contact) {

@@ -21,7 +21,12 @@ void checkNode(const NodeDef& node, const std::string& where) {
         fail(where, ".node.mass = ", node.mass, " (kg) must be finite and > 0");
     if (!(std::isfinite(node.radius) && node.radius > 0))
         fail(where, ".node.radius = ", node.radius, " (m) must be finite and > 0");
-    checks::material(node.material, where + ".node.material");
+    // The node's mass is given and its density ignored (NodeDef), but createShape checks the
+    // whole material of a colliding node.
+    if (node.collide)
+        checks::material(node.material, where + ".node.material");
+    else
+        checks::surface(node.material, where + ".node.material");
 }
 
 void checkThread(const ThreadDef& thread, const std::string& where) {

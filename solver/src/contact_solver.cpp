@@ -60,11 +60,24 @@ void prepareAngularFriction(const SolverBody& a, const SolverBody& b, ContactCon
         }
         c.rollingActive = c.rolling.set(kRolling);
     }
-    // Keep only the cached parts that have rows this step.
-    const Real spinPart = c.spinMass > 0 ? c.normal.dot(c.angularImpulse) : 0;
-    const Vec3 rollingPart =
-        c.rollingActive ? Vec3(c.angularImpulse - c.normal.dot(c.angularImpulse) * c.normal)
-                        : Vec3::Zero();
+    // Keep only the cached parts that have rows this step, within this step's limits (from the
+    // warm-start normal impulses): a patch whose load has gone keeps no torque.
+    Real normalImpulse = 0;
+    c.angularReach = 0;
+    for (int i = 0; i < c.pointCount; ++i) {
+        normalImpulse += c.points[i].normalImpulse;
+        c.angularReach = std::max({c.angularReach, c.points[i].rA.norm(), c.points[i].rB.norm()});
+    }
+    const Real spinLimit = c.spinningFriction * normalImpulse;
+    const Real spinPart =
+        c.spinMass > 0 ? std::clamp(c.normal.dot(c.angularImpulse), -spinLimit, spinLimit) : 0;
+    Vec3 rollingPart = Vec3::Zero();
+    if (c.rollingActive) {
+        rollingPart = c.angularImpulse - c.normal.dot(c.angularImpulse) * c.normal;
+        const Real rollingLimit = c.rollingFriction * normalImpulse;
+        if (rollingPart.norm() > rollingLimit)
+            rollingPart *= rollingLimit / rollingPart.norm();
+    }
     c.angularImpulse = warmStart ? Vec3(spinPart * c.normal + rollingPart) : Vec3::Zero();
 }
 
@@ -445,7 +458,7 @@ Real ContactSolver::solveVelocitySweep(std::span<SolverBody> bodies,
             }
         }
         if (c.spinMass > 0 || c.rollingActive)
-            solveAngularFriction(a, b, c);
+            largestChange = std::max(largestChange, solveAngularFriction(a, b, c, omega));
         solveNormals(a, b, c, settings, inverseH, bias, largestChange);
     }
     return largestChange;
@@ -454,32 +467,42 @@ Real ContactSolver::solveVelocitySweep(std::span<SolverBody> bodies,
 // Torsion and rolling resistance, with the normal impulses of the last sweep like the linear
 // friction: the spin about the normal driven to zero within +-spinningFriction x sum(lambda_n),
 // the relative spin about the tangents within the disc of radius rollingFriction x
-// sum(lambda_n), solved exactly as the point friction is (solveDisc). Their changes in angular
-// velocity are not counted against the tolerance, which is in m/s.
-void ContactSolver::solveAngularFriction(SolverBody& a, SolverBody& b, ContactConstraint& c) const {
+// sum(lambda_n), solved exactly as the point friction is (solveDisc), relaxed by the SOR factor
+// like it. The disc is used under the box friction model too: the study's box model is about
+// linear friction. Returns the change as a speed at the manifold's farthest point (m/s).
+Real ContactSolver::solveAngularFriction(SolverBody& a, SolverBody& b, ContactConstraint& c,
+                                         Real omega) const {
     Real normalImpulse = 0;
     for (int i = 0; i < c.pointCount; ++i)
         normalImpulse += c.points[i].normalImpulse;
     Vec3 change = Vec3::Zero();
+    Real spinChange = 0;
     if (c.spinMass > 0) {
         const Real spin = c.normal.dot(b.angularVelocity - a.angularVelocity);
         const Real old = c.normal.dot(c.angularImpulse);
         const Real limit = c.spinningFriction * normalImpulse;
-        const Real next = std::clamp(old - c.spinMass * spin, -limit, limit);
+        const Real solved = std::clamp(old - c.spinMass * spin, -limit, limit);
+        const Real next = old + omega * (solved - old);
         change += (next - old) * c.normal;
         applyAngular(a, b, (next - old) * c.normal);
+        spinChange = std::abs(next - old) / c.spinMass;
     }
+    Real rollingChange = 0;
     if (c.rollingActive) {
         const Vec3 relative = b.angularVelocity - a.angularVelocity;
         const Vec2 roll(c.tangents[0].dot(relative), c.tangents[1].dot(relative));
         const Vec2 old(c.tangents[0].dot(c.angularImpulse), c.tangents[1].dot(c.angularImpulse));
-        const Vec2 next = solveDisc(c.rolling, old, roll, c.rollingFriction * normalImpulse);
-        const Vec3 delta =
-            (next.x() - old.x()) * c.tangents[0] + (next.y() - old.y()) * c.tangents[1];
-        change += delta;
-        applyAngular(a, b, delta);
+        const Vec2 solved = solveDisc(c.rolling, old, roll, c.rollingFriction * normalImpulse);
+        const Vec2 delta = omega * (solved - old);
+        const Vec3 impulse = delta.x() * c.tangents[0] + delta.y() * c.tangents[1];
+        change += impulse;
+        applyAngular(a, b, impulse);
+        rollingChange = (c.rolling.block * delta).norm();
     }
     c.angularImpulse += change;
+    // The change of relative spin (rad/s), as a speed at the farthest contact point (m/s), so
+    // the tolerance, in m/s, sees it.
+    return std::max(spinChange, rollingChange) * c.angularReach;
 }
 
 void ContactSolver::solveNormals(SolverBody& a, SolverBody& b, ContactConstraint& c,

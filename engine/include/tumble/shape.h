@@ -21,15 +21,17 @@ struct ShapeId {
 struct Material {
     Real friction = 0.5;   ///< Coulomb coefficient, >= 0
     Real restitution = 0;  ///< Newton's coefficient, in [0, 1]
+    Real density = 1000;   ///< (kg/m^3), > 0; used when the shape sets its body's mass
     /// Torsional friction length (m), finite and >= 0: a contact resists spin about its normal
     /// with a torque up to this times its normal force. A rigid point contact has none; a patch
-    /// of radius a with Coulomb mu has about 2/3 mu a. A pair uses the larger of the two.
+    /// of radius a with Coulomb mu has about 2/3 mu a. A pair uses the larger of the two. Meant
+    /// for round bodies: a manifold of several points (a face) already resists spin and tipping
+    /// through its points, and these add to that.
     Real spinningFriction = 0;
     /// Rolling resistance length (m), finite and >= 0: a contact resists rolling with a torque up
     /// to this times its normal force (a ball of radius r rests on slopes up to atan(this / r)).
     /// A pair uses the larger of the two.
     Real rollingFriction = 0;
-    Real density = 1000;  ///< (kg/m^3), > 0; used when the shape sets its body's mass
 };
 
 /// Which shapes may touch: a and b collide when (a.category & b.mask) and (b.category & a.mask)

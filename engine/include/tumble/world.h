@@ -186,7 +186,8 @@ public:
 
     // --- shapes and contacts -----------------------------------------------------------------
     /// Attaches a shape to a body. Refuses a bad geometry (see checkShape), a bad material
-    /// (friction < 0, restitution outside [0, 1], density <= 0), a non-finite or non-unit local
+    /// (friction, spinningFriction or rollingFriction negative or not finite, restitution outside
+    /// [0, 1], density <= 0), a non-finite or non-unit local
     /// pose, and a half-space on a non-static body. See ShapeDef::updateBodyMass.
     ShapeId createShape(BodyId body, const ShapeDef& def);
     /// Detaches and destroys a shape; a dynamic body whose mass came from its shapes keeps the

@@ -178,6 +178,7 @@ struct ContactConstraint {
     Real spinMass = 0;           ///< 1 / n'(IA^-1 + IB^-1) n (kg m^2); 0: no spinning row
     DiscBlock rolling;           ///< K of the relative spin about the tangents (1/(kg m^2))
     bool rollingActive = false;  ///< rolling rows solved this step
+    Real angularReach = 0;       ///< farthest point from either centre of mass (m)
 };
 
 struct SolverStats {
@@ -215,7 +216,7 @@ private:
                   Real bias, int sweeps);
     Real solveVelocitySweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                             const SolverSettings& settings, Real inverseH, Real bias) const;
-    void solveAngularFriction(SolverBody& a, SolverBody& b, ContactConstraint& c) const;
+    Real solveAngularFriction(SolverBody& a, SolverBody& b, ContactConstraint& c, Real omega) const;
     void solveNormals(SolverBody& a, SolverBody& b, ContactConstraint& c,
                       const SolverSettings& settings, Real inverseH, Real bias,
                       Real& largestChange) const;
