@@ -23,11 +23,11 @@ namespace {
 
 using namespace tumble;
 
-constexpr Real kMargin = 0.1;             // fat-box margin (m)
-constexpr Real kSparseVolume = 8;         // m^3 per box
-constexpr Real kDenseVolume = 1.5;        // m^3 per box
-constexpr Real kSlowStep = 0.005;         // m per step
-constexpr Real kFastStep = 0.1;           // m per step
+constexpr Real kMargin = 0.1;       // fat-box margin (m)
+constexpr Real kSparseVolume = 8;   // m^3 per box
+constexpr Real kDenseVolume = 1.5;  // m^3 per box
+constexpr Real kSlowStep = 0.005;   // m per step
+constexpr Real kFastStep = 0.1;     // m per step
 // Past the first refits: boxes of one speed all leave their fat boxes 20-35 steps in, and a
 // timing window that starts inside that burst overstates the steady cost (most at 50k, where
 // few iterations are timed).
