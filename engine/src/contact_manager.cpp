@@ -42,18 +42,14 @@ void carryImpulses(const Contact& previous, Contact& next) {
         next.tangentImpulse[i] = match >= 0 ? previous.tangentImpulse[match] : Vec3::Zero();
         matched = matched || match >= 0;
     }
-    // The manifold's torsion and rolling impulse belongs to the pair's patch, which lives as long
-    // as the manifold does (the solver clamps it to this step's limits, zero once no point's
-    // load persists). Its parts are carried over onto the new normal: the spin part about it,
-    // the rolling part turned into its tangent plane, so a turned normal never makes a spin
-    // impulse come back as a rolling one. Kept however far the normal turned: a resting body's
-    // normal can jump by 20-40 deg from one step to the next (a sphere sunk at a box's edge,
-    // whose least translation alternates between the faces), and dropping the torque there
-    // (tried: kept only within 18 deg) left a settled 5,000-body pile awake for good.
-    next.angularImpulse = matched
-                              ? carryAngularImpulse(previous.angularImpulse,
-                                                    previous.manifold.normal, next.manifold.normal)
-                              : Vec3::Zero();
+    // The manifold's torsion and rolling impulse is a torque on the pair, carried as it is, in
+    // world coordinates, while a point persists; the solver splits it along this step's normal
+    // and clamps each part to this step's limits. A resting body's normal can jump by 20-40 deg
+    // from one step to the next (a sphere sunk at a box's edge, whose least translation
+    // alternates between the faces) while the torque it needs does not: dropping the impulse
+    // past 18 deg left the 5,000-body soak's settled pile awake for good, and carrying its parts
+    // onto the new normal (spin about it, rolling turned across it) woke it after a drop.
+    next.angularImpulse = matched ? previous.angularImpulse : Vec3::Zero();
 }
 
 ContactEvent touchEvent(const Contact& contact) {
@@ -61,14 +57,6 @@ ContactEvent touchEvent(const Contact& contact) {
 }
 
 }  // namespace
-
-Vec3 carryAngularImpulse(const Vec3& impulse, const Vec3& n0, const Vec3& n1) {
-    if (n0.dot(n1) <= 0)
-        return Vec3::Zero();
-    const Real spin = n0.dot(impulse);
-    const Vec3 rolling = impulse - spin * n0;
-    return spin * n1 + Quat::FromTwoVectors(n0, n1) * rolling;
-}
 
 Transform shapePose(const ShapeRecord& shape, const BodyStore& bodies) {
     const Transform body = bodyTransform(bodies, bodies.indexOf(shape.body));

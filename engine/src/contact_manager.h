@@ -28,12 +28,6 @@
 
 namespace tumble {
 
-/// A manifold's torsion and rolling impulse (spin part s about the old normal n0, rolling part r
-/// across it) carried onto the new normal n1: s about n1, r turned by the rotation taking n0 to
-/// n1, so neither part comes back as the other however far the normal turned; nothing when the
-/// normal flipped (n0 . n1 <= 0).
-Vec3 carryAngularImpulse(const Vec3& impulse, const Vec3& n0, const Vec3& n1);
-
 class ContactManager {
     friend struct CheckpointAccess;  ///< checkpoint.cpp saves and restores the private state
 public:
