@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <bit>
 #include <cstdint>
 #include <cstdio>
 #include <string>
@@ -15,48 +14,14 @@
 #include <vector>
 
 #include "scene.h"
+#include "support/state_hash.h"
 
 namespace tumble {
 namespace {
 
-/// FNV-1a over 64-bit words: enough to tell two trajectories apart, cheap enough to run per step.
-class Hash {
-public:
-    void add(std::uint64_t word) {
-        for (int byte = 0; byte < 8; ++byte) {
-            value_ ^= (word >> (8 * byte)) & 0xffu;
-            value_ *= 0x100000001b3ull;
-        }
-    }
-    void add(Real x) { add(std::bit_cast<std::uint64_t>(x)); }  // -0.0 and NaN payloads count
-    void add(const Vec3& v) {
-        for (int k = 0; k < 3; ++k)
-            add(v[k]);
-    }
-    std::uint64_t value() const { return value_; }
-
-private:
-    std::uint64_t value_ = 0xcbf29ce484222325ull;
-};
-
-/// Every body's full state, in scene order: pose, velocities, awake flag.
+/// Every body of the scene, in scene order (tests/support/state_hash.h).
 std::uint64_t stateHash(const cli::BuiltScene& built) {
-    const World& w = built.world;
-    Hash h;
-    h.add(w.stepCount());
-    h.add(w.time());
-    for (const BodyId b : built.bodies) {
-        h.add(w.position(b));
-        const Quat q = w.orientation(b);
-        h.add(q.w());
-        h.add(q.x());
-        h.add(q.y());
-        h.add(q.z());
-        h.add(w.linearVelocity(b));
-        h.add(w.angularVelocity(b));
-        h.add(std::uint64_t{w.isAwake(b)});
-    }
-    return h.value();
+    return test::stateHash(built.world, built.bodies);
 }
 
 struct Trajectory {
