@@ -1,11 +1,12 @@
 #pragma once
-/// Dense storage of joints behind value handles, like SpringStore: parallel arrays indexed by a
-/// dense index, swap-with-last removal, so the order the solver sweeps them in depends only on
-/// the sequence of create and destroy calls.
+/// Dense storage of joints behind value handles, like SpringStore: parallel arrays indexed by the
+/// dense index of a HandlePool, swap-with-last removal, so the order the solver sweeps them in
+/// depends only on the sequence of create and destroy calls.
 
 #include <cstdint>
 #include <vector>
 
+#include "handle_pool.h"
 #include "tumble/joint.h"
 
 namespace tumble {
@@ -41,11 +42,13 @@ class JointStore {
 public:
     JointId add(const JointRecord& record);
     void remove(JointId id);
-    bool isValid(JointId id) const;
-    /// Dense index of a valid id; refuses (InvalidArgument) a null, stale or unknown id.
-    std::uint32_t indexOf(JointId id) const;
-    JointId idAt(std::uint32_t index) const;
-    std::uint32_t count() const { return static_cast<std::uint32_t>(records.size()); }
+    bool isValid(JointId id) const { return pool_.isValid(id); }
+    /// Dense index of a valid id; refuses (InvalidArgument) a null, foreign, stale or unknown id.
+    std::uint32_t indexOf(JointId id) const { return pool_.indexOf(id); }
+    JointId idAt(std::uint32_t index) const { return pool_.idAt(index); }
+    std::uint32_t count() const { return pool_.size(); }
+    /// The tag of the world that owns the store (World::Impl::setWorldTag).
+    void setWorld(std::uint32_t world) { pool_.setWorld(world); }
 
     /// state -> previousState at the start of a step, and back if the step fails.
     void saveState() { previousState = state; }
@@ -56,14 +59,7 @@ public:
     std::vector<JointStepState> previousState;
 
 private:
-    struct Slot {
-        std::uint32_t generation = 0;
-        std::uint32_t dense = 0;
-        bool alive = false;
-    };
-    std::vector<Slot> slots_;
-    std::vector<std::uint32_t> slotOf_;     ///< per dense index
-    std::vector<std::uint32_t> freeSlots_;  ///< reused last-in first-out
+    HandlePool<JointId> pool_{"JointId", "joint"};
 };
 
 }  // namespace tumble
