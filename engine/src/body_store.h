@@ -11,7 +11,6 @@
 /// The list's order depends only on the sequence of create/destroy/wake/sleep events.
 
 #include <cstdint>
-#include <string>
 #include <vector>
 
 #include "handle_pool.h"
@@ -69,21 +68,12 @@ struct BodyInfo {
     static constexpr std::uint32_t kNone = 0xFFFFFFFF;
 };
 
-class BodyStore {
+class BodyStore : public DenseStore<BodyId> {
     friend struct CheckpointAccess;  ///< checkpoint.cpp saves and restores the private state
 public:
+    BodyStore() : DenseStore("BodyId", "body") {}
     BodyId add(const BodyDef& def);
     void remove(BodyId id);
-
-    bool isValid(BodyId id) const { return pool_.isValid(id); }
-    /// Dense index of a valid id; refuses (InvalidArgument) a null, foreign, stale or unknown id.
-    std::uint32_t indexOf(BodyId id) const { return pool_.indexOf(id); }
-    BodyId idAt(std::uint32_t index) const { return pool_.idAt(index); }
-    /// Why a non-null id is not valid, for refusals (HandlePool::whyInvalid).
-    std::string whyInvalid(BodyId id) const { return pool_.whyInvalid(id); }
-    std::uint32_t count() const { return pool_.size(); }
-    /// The tag of the world that owns the store (World::Impl::setWorldTag).
-    void setWorld(std::uint32_t world) { pool_.setWorld(world); }
 
     void setMass(std::uint32_t index, const MassProperties& mass);
 
@@ -117,9 +107,6 @@ public:
     std::vector<BodyForces> forces;
     std::vector<BodyInfo> info;
     std::vector<std::uint32_t> awake;  ///< dense indices of the awake bodies
-
-private:
-    HandlePool<BodyId> pool_{"BodyId", "body"};
 };
 
 }  // namespace tumble

@@ -130,6 +130,27 @@ private:
     const char* what_;
 };
 
+/// Base of the stores that keep their elements in parallel arrays at a HandlePool's dense
+/// indices (bodies, joints, springs): the id queries they all answer alike.
+template <typename Id>
+class DenseStore {
+public:
+    /// Names a live element of this world.
+    bool isValid(Id id) const { return pool_.isValid(id); }
+    /// Dense index of a valid id; refuses (InvalidArgument) a null, foreign, stale or unknown id.
+    std::uint32_t indexOf(Id id) const { return pool_.indexOf(id); }
+    Id idAt(std::uint32_t index) const { return pool_.idAt(index); }
+    std::uint32_t count() const { return pool_.size(); }
+    /// Why a non-null id is not valid, for refusals that name a field (HandlePool::whyInvalid).
+    std::string whyInvalid(Id id) const { return pool_.whyInvalid(id); }
+    /// The tag of the world that owns the store (World::Impl::setWorldTag).
+    void setWorld(std::uint32_t world) { pool_.setWorld(world); }
+
+protected:
+    DenseStore(const char* idName, const char* what) : pool_(idName, what) {}
+    HandlePool<Id> pool_;
+};
+
 /// The swap-with-last removal of a store's parallel arrays, after HandlePool::remove returned
 /// `index`: each array's last element moves into `index` and the array shrinks by one.
 template <typename... Arrays>

@@ -37,18 +37,12 @@ struct JointStepState {
     bool broken = false;
 };
 
-class JointStore {
+class JointStore : public DenseStore<JointId> {
     friend struct CheckpointAccess;  ///< checkpoint.cpp saves and restores the private state
 public:
+    JointStore() : DenseStore("JointId", "joint") {}
     JointId add(const JointRecord& record);
     void remove(JointId id);
-    bool isValid(JointId id) const { return pool_.isValid(id); }
-    /// Dense index of a valid id; refuses (InvalidArgument) a null, foreign, stale or unknown id.
-    std::uint32_t indexOf(JointId id) const { return pool_.indexOf(id); }
-    JointId idAt(std::uint32_t index) const { return pool_.idAt(index); }
-    std::uint32_t count() const { return pool_.size(); }
-    /// The tag of the world that owns the store (World::Impl::setWorldTag).
-    void setWorld(std::uint32_t world) { pool_.setWorld(world); }
 
     /// state -> previousState at the start of a step, and back if the step fails.
     void saveState() { previousState = state; }
@@ -57,9 +51,6 @@ public:
     std::vector<JointRecord> records;
     std::vector<JointStepState> state;
     std::vector<JointStepState> previousState;
-
-private:
-    HandlePool<JointId> pool_{"JointId", "joint"};
 };
 
 }  // namespace tumble

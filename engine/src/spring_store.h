@@ -22,18 +22,12 @@ struct SpringStepState {
     bool slack = false;  ///< tension-only and carrying nothing
 };
 
-class SpringStore {
+class SpringStore : public DenseStore<SpringId> {
     friend struct CheckpointAccess;  ///< checkpoint.cpp saves and restores the private state
 public:
+    SpringStore() : DenseStore("SpringId", "spring") {}
     SpringId add(const SpringDef& def);
     void remove(SpringId id);
-    bool isValid(SpringId id) const { return pool_.isValid(id); }
-    /// Dense index of a valid id; refuses (InvalidArgument) a null, foreign, stale or unknown id.
-    std::uint32_t indexOf(SpringId id) const { return pool_.indexOf(id); }
-    SpringId idAt(std::uint32_t index) const { return pool_.idAt(index); }
-    std::uint32_t count() const { return pool_.size(); }
-    /// The tag of the world that owns the store (World::Impl::setWorldTag).
-    void setWorld(std::uint32_t world) { pool_.setWorld(world); }
     void reserve(std::size_t count);
 
     /// Removes every spring attached to the body (its id is about to die).
@@ -51,9 +45,6 @@ public:
     std::vector<SpringStepState> state;
     std::vector<SpringStepState> previousState;
     std::uint32_t implicitCount = 0;  ///< how many use SpringFormulation::Implicit
-
-private:
-    HandlePool<SpringId> pool_{"SpringId", "spring"};
 };
 
 /// Drag of the bodies that have any, in the order drag was first set.
