@@ -1,22 +1,10 @@
 #include "body_store.h"
 
-#include "tumble/core/error.h"
-
 namespace tumble {
 
 BodyId BodyStore::add(const BodyDef& def) {
-    std::uint32_t slotIndex;
-    if (freeSlots_.empty()) {
-        slotIndex = static_cast<std::uint32_t>(slots_.size());
-        slots_.push_back({});
-    } else {
-        slotIndex = freeSlots_.back();
-        freeSlots_.pop_back();
-    }
-    Slot& slot = slots_[slotIndex];
-    slot.generation += 1;
-    slot.dense = count();
-    slot.alive = true;
+    const BodyId id = pool_.add();
+    const std::uint32_t index = count() - 1;
 
     BodyMotion m;
     m.orientation = def.orientation.normalized();
@@ -35,60 +23,24 @@ BodyId BodyStore::add(const BodyDef& def) {
     bodyInfo.angularDamping = def.angularDamping;
     bodyInfo.gravityScale = def.gravityScale;
     bodyInfo.userData = def.userData;
-    bodyInfo.slot = slotIndex;
     bodyInfo.allowSleep = def.allowSleep;
     bodyInfo.builtAsleep = def.type == BodyType::Dynamic && !def.awake;
     bodyInfo.fixedRotation = def.fixedRotation;
     info.push_back(bodyInfo);
-    setMass(slot.dense, def.mass);
+    setMass(index, def.mass);
     previousMotion.back() = motion.back();
     if (def.type == BodyType::Kinematic || (def.type == BodyType::Dynamic && def.awake))
-        markAwake(slot.dense);
-    return BodyId{slotIndex, slot.generation};
+        markAwake(index);
+    return id;
 }
 
 void BodyStore::remove(BodyId id) {
-    const std::uint32_t index = indexOf(id);
-    if (isAwake(index))
-        markNotAwake(index);
-    const std::uint32_t last = count() - 1;
-    if (index != last) {
-        motion[index] = motion[last];
-        previousMotion[index] = previousMotion[last];
-        inertia[index] = inertia[last];
-        forces[index] = forces[last];
-        info[index] = info[last];
-        slots_[info[index].slot].dense = index;
-        if (isAwake(index))
-            awake[info[index].awakeIndex] = index;
-    }
-    motion.pop_back();
-    previousMotion.pop_back();
-    inertia.pop_back();
-    forces.pop_back();
-    info.pop_back();
-    slots_[id.index].alive = false;
-    freeSlots_.push_back(id.index);
-}
-
-bool BodyStore::isValid(BodyId id) const {
-    return id.generation != 0 && id.index < slots_.size() && slots_[id.index].alive &&
-           slots_[id.index].generation == id.generation;
-}
-
-std::uint32_t BodyStore::indexOf(BodyId id) const {
-    if (!isValid(id)) {
-        if (id.isNull())
-            fail("body id is null");
-        fail("body id {index ", id.index, ", generation ", id.generation,
-             "} does not name a live body (destroyed, or from another world)");
-    }
-    return slots_[id.index].dense;
-}
-
-BodyId BodyStore::idAt(std::uint32_t index) const {
-    const std::uint32_t slot = info[index].slot;
-    return BodyId{slot, slots_[slot].generation};
+    if (isAwake(indexOf(id)))
+        markNotAwake(indexOf(id));
+    const std::uint32_t index = pool_.remove(id);
+    moveLastInto(index, motion, previousMotion, inertia, forces, info);
+    if (index < count() && isAwake(index))
+        awake[info[index].awakeIndex] = index;  // the body moved into the freed index
 }
 
 void BodyStore::markAwake(std::uint32_t index) {

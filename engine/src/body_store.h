@@ -1,10 +1,10 @@
 #pragma once
 /// Dense body storage behind value handles.
 ///
-/// Bodies live in parallel contiguous arrays indexed by a dense `index`; ids name a slot whose
-/// generation must match. Destroying a body moves the last body into its dense index, so dense
-/// order depends only on the sequence of create/destroy calls -- never on addresses or hashing --
-/// which keeps stepping deterministic.
+/// Bodies live in parallel contiguous arrays indexed by a dense `index`; ids are those of a
+/// HandlePool (handle_pool.h). Destroying a body moves the last body into its dense index, so
+/// dense order depends only on the sequence of create/destroy calls -- never on addresses or
+/// hashing -- which keeps stepping deterministic.
 ///
 /// Awake bodies (dynamic bodies not asleep, and every kinematic body) are also listed in `awake`,
 /// which is what the per-body loops of a step walk: a sleeping or static body is never visited.
@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "handle_pool.h"
 #include "tumble/body.h"
 
 namespace tumble {
@@ -45,7 +46,6 @@ struct BodyInfo {
     Real gravityScale = 1;
     MassProperties mass;  ///< as given, for reporting
     std::uint64_t userData = 0;
-    std::uint32_t slot = 0;               ///< back-reference to the id's slot
     std::uint32_t firstShape = kNoShape;  ///< slot of the body's first shape
     std::uint32_t firstContact = kNone;   ///< head of its contact list (ContactManager edges)
     std::uint32_t awakeIndex = kNone;     ///< position in BodyStore::awake; kNone when not awake
@@ -68,17 +68,12 @@ struct BodyInfo {
     static constexpr std::uint32_t kNone = 0xFFFFFFFF;
 };
 
-class BodyStore {
+class BodyStore : public DenseStore<BodyId> {
     friend struct CheckpointAccess;  ///< checkpoint.cpp saves and restores the private state
 public:
+    BodyStore() : DenseStore("BodyId", "body") {}
     BodyId add(const BodyDef& def);
     void remove(BodyId id);
-
-    bool isValid(BodyId id) const;
-    /// Dense index of a valid id; refuses (InvalidArgument) a null, stale or unknown id.
-    std::uint32_t indexOf(BodyId id) const;
-    BodyId idAt(std::uint32_t index) const;
-    std::uint32_t count() const { return static_cast<std::uint32_t>(motion.size()); }
 
     void setMass(std::uint32_t index, const MassProperties& mass);
 
@@ -112,15 +107,6 @@ public:
     std::vector<BodyForces> forces;
     std::vector<BodyInfo> info;
     std::vector<std::uint32_t> awake;  ///< dense indices of the awake bodies
-
-private:
-    struct Slot {
-        std::uint32_t generation = 0;  ///< of the body living here, or of the last one that did
-        std::uint32_t dense = 0;
-        bool alive = false;
-    };
-    std::vector<Slot> slots_;
-    std::vector<std::uint32_t> freeSlots_;  ///< reused last-in first-out
 };
 
 }  // namespace tumble

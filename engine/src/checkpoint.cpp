@@ -16,21 +16,14 @@ namespace checkpoint_io {
 // Each lists every field, in declaration order: a field added to a record must be added here
 // (and kCheckpointVersion bumped).
 
-template <typename Ar>
-void field(Ar& a, BodyId& x) {
+// An id is saved without its world tag (a tag is not state: two worlds stepping alike save alike)
+// and read back with the tag of the world being loaded.
+template <typename Ar, typename Id>
+requires(std::is_same_v<Id, BodyId> || std::is_same_v<Id, ShapeId> || std::is_same_v<Id, JointId> ||
+         std::is_same_v<Id, SpringId>) void field(Ar& a, Id& x) {
     fields(a, x.index, x.generation);
-}
-template <typename Ar>
-void field(Ar& a, ShapeId& x) {
-    fields(a, x.index, x.generation);
-}
-template <typename Ar>
-void field(Ar& a, JointId& x) {
-    fields(a, x.index, x.generation);
-}
-template <typename Ar>
-void field(Ar& a, SpringId& x) {
-    fields(a, x.index, x.generation);
+    if constexpr (Ar::kReading)
+        x.world = x.isNull() ? 0 : a.world;
 }
 template <typename Ar>
 void field(Ar& a, Transform& x) {
@@ -75,7 +68,7 @@ void field(Ar& a, BodyForces& x) {
 }
 template <typename Ar>
 void field(Ar& a, BodyInfo& x) {
-    fields(a, x.type, x.linearDamping, x.angularDamping, x.gravityScale, x.mass, x.userData, x.slot,
+    fields(a, x.type, x.linearDamping, x.angularDamping, x.gravityScale, x.mass, x.userData,
            x.firstShape, x.firstContact, x.awakeIndex, x.sleepTime, x.allowSleep, x.pushed,
            x.builtAsleep, x.massFromShapes, x.fixedRotation);
 }
@@ -147,7 +140,7 @@ void field(Ar& a, ShapeDef& x) {
 }
 template <typename Ar>
 void field(Ar& a, ShapeRecord& x) {
-    fields(a, x.def, x.body, x.proxy, x.fatBounds, x.bounds, x.generation, x.nextInBody, x.alive);
+    fields(a, x.def, x.body, x.proxy, x.fatBounds, x.bounds, x.nextInBody);
 }
 
 template <typename Ar>
@@ -238,12 +231,6 @@ void field(Ar& a, ProxyPair& x) {
     fields(a, x.first, x.second);
 }
 
-// Slot tables of the stores (private nested types, the same three fields each).
-template <typename Ar, typename Slot>
-void slots(Ar& a, std::vector<Slot>& table) {
-    sequence(a, table, [&](Slot& s) { fields(a, s.generation, s.dense, s.alive); });
-}
-
 }  // namespace checkpoint_io
 
 using checkpoint_io::fields;
@@ -268,6 +255,15 @@ struct CheckpointAccess {
                x.largeThreshold_, x.reach_);
     }
 
+    /// The id table of a store: slots, dense order, free list (not the world tag).
+    template <typename Ar, typename Id>
+    static void io(Ar& a, HandlePool<Id>& x) {
+        sequence(a, x.slots_, [&](typename HandlePool<Id>::Slot& s) {
+            fields(a, s.generation, s.dense, s.alive);
+        });
+        fields(a, x.slotOf_, x.freeSlots_);
+    }
+
     template <typename Ar>
     static void io(Ar& a, ContactManager& x) {
         io(a, x.broadphase_);
@@ -284,21 +280,40 @@ struct CheckpointAccess {
         fields(a, w.settings, w.time, w.stepCount, w.accumulator, w.solverStats);
         BodyStore& b = w.bodies;
         fields(a, b.motion, b.previousMotion, b.inertia, b.forces, b.info, b.awake);
-        checkpoint_io::slots(a, b.slots_);
-        fields(a, b.freeSlots_);
-        fields(a, w.shapes.records, w.shapes.freeSlots_);
+        io(a, b.pool_);
+        fields(a, w.shapes.records);
+        io(a, w.shapes.pool_);
         io(a, w.contacts);
         SpringStore& s = w.springs;
         fields(a, s.defs, s.state, s.previousState, s.implicitCount);
-        checkpoint_io::slots(a, s.slots_);
-        fields(a, s.slotOf_, s.freeSlots_);
+        io(a, s.pool_);
         JointStore& j = w.joints;
         fields(a, j.records, j.state, j.previousState);
-        checkpoint_io::slots(a, j.slots_);
-        fields(a, j.slotOf_, j.freeSlots_);
+        io(a, j.pool_);
         fields(a, w.drag.bodies, w.drag.drags, w.drag.denseOfSlot_, w.controllers.records_);
         sequence(a, w.impacts.bySlot_, [&](ImpactTracker::Open& o) { fields(a, o.event, o.open); });
         fields(a, w.impacts.opened_, w.pendingEvents, w.events);
+    }
+
+    /// An id table that maps `count` dense elements to live slots and back, whose every other
+    /// slot is free.
+    template <typename Id>
+    static void check(const checkpoint_io::Reader& r, const HandlePool<Id>& pool, std::size_t count,
+                      const char* what) {
+        if (pool.slotOf_.size() != count)
+            r.corrupt(what, " ids: ", pool.slotOf_.size(), " for ", count, " elements");
+        if (pool.freeSlots_.size() + count != pool.slots_.size())
+            r.corrupt(what, " ids: free and live slots do not add up");
+        for (std::uint32_t i = 0; i < count; ++i) {
+            const std::uint32_t slot = pool.slotOf_[i];
+            if (!(slot < pool.slots_.size() && pool.slots_[slot].alive &&
+                  pool.slots_[slot].dense == i))
+                r.corrupt(what, " slot ", slot, " does not point back at element ", i);
+        }
+        for (const std::uint32_t slot : pool.freeSlots_) {
+            if (!(slot < pool.slots_.size() && !pool.slots_[slot].alive))
+                r.corrupt("free ", what, " slot ", slot, " out of range or alive");
+        }
     }
 
     /// Sizes that must agree for the stores to be usable; a payload that passed the checksum
@@ -328,27 +343,27 @@ struct CheckpointAccess {
             if (b.info[b.awake[k]].awakeIndex != k)
                 r.corrupt("awake list and awake indices disagree");
         }
+        check(r, b.pool_, n, "body");
         const std::size_t shapeSlots = w.shapes.records.size();
+        if (w.shapes.pool_.slotCount() != shapeSlots)
+            r.corrupt("shape records and shape slots of different sizes");
+        check(r, w.shapes.pool_, w.shapes.pool_.size(), "shape");
         const ContactManager& c = w.contacts;
         const std::size_t edges = 2 * c.pool_.size();
         for (std::uint32_t i = 0; i < n; ++i) {
             const BodyInfo& info = b.info[i];
-            one(info.slot, b.slots_.size(), false, "body slot");
-            if (b.slots_[info.slot].dense != i || !b.slots_[info.slot].alive)
-                r.corrupt("body slot ", info.slot, " does not point back at body ", i);
             one(info.firstShape, shapeSlots, true, "first shape");
             one(info.firstContact, edges, true, "first contact");
             one(info.awakeIndex, b.awake.size(), true, "awake index");
         }
-        all(b.freeSlots_, b.slots_.size(), false, "free body slot");
         const SweepAndPrune& sap = c.broadphase_;
         const std::size_t proxies = sap.proxies_.size();
-        for (const ShapeRecord& shape : w.shapes.records) {
+        for (std::uint32_t slot = 0; slot < shapeSlots; ++slot) {
+            const ShapeRecord& shape = w.shapes.records[slot];
             one(shape.nextInBody, shapeSlots, true, "next shape");
-            if (shape.alive && (!b.isValid(shape.body) || shape.proxy >= proxies))
+            if (w.shapes.isAlive(slot) && (!b.isValid(shape.body) || shape.proxy >= proxies))
                 r.corrupt("a shape's body or proxy is invalid");
         }
-        all(w.shapes.freeSlots_, shapeSlots, false, "free shape slot");
         for (const ContactManager::Record& record : c.pool_) {
             all(record.next, edges, true, "contact edge");
             all(record.previous, edges, true, "contact edge");
@@ -387,21 +402,17 @@ struct CheckpointAccess {
         if (sap.axis_ < 0 || sap.axis_ > 2)
             r.corrupt("sweep axis ", sap.axis_);
         const SpringStore& s = w.springs;
-        if (s.state.size() != s.defs.size() || s.previousState.size() != s.defs.size() ||
-            s.slotOf_.size() != s.defs.size())
+        if (s.state.size() != s.defs.size() || s.previousState.size() != s.defs.size())
             r.corrupt("spring arrays of different sizes");
-        all(s.slotOf_, s.slots_.size(), false, "spring slot");
-        all(s.freeSlots_, s.slots_.size(), false, "free spring slot");
+        check(r, s.pool_, s.defs.size(), "spring");
         for (const SpringDef& def : s.defs) {
             if (!b.isValid(def.bodyA) || !(def.bodyB.isNull() || b.isValid(def.bodyB)))
                 r.corrupt("a spring's bodies are invalid");
         }
         const JointStore& j = w.joints;
-        if (j.state.size() != j.records.size() || j.previousState.size() != j.records.size() ||
-            j.slotOf_.size() != j.records.size())
+        if (j.state.size() != j.records.size() || j.previousState.size() != j.records.size())
             r.corrupt("joint arrays of different sizes");
-        all(j.slotOf_, j.slots_.size(), false, "joint slot");
-        all(j.freeSlots_, j.slots_.size(), false, "free joint slot");
+        check(r, j.pool_, j.records.size(), "joint");
         for (const JointRecord& record : j.records) {
             const JointDef& def = record.def;
             if (!b.isValid(def.bodyA) || !(def.bodyB.isNull() || b.isValid(def.bodyB)))
@@ -479,8 +490,12 @@ void restoreCheckpoint(World& world, std::span<const std::uint8_t> bytes, std::s
     if (checkpoint_io::fnv1a(payload) != checksum)
         fail("checkpoint ", source, ": corrupted: the payload's checksum does not match");
 
+    // The loaded state takes this world's tag: ids this world handed out stay good, another
+    // world's ids stay foreign (docs/checkpoint.md, "Ids").
     std::unique_ptr<CheckpointAccess::Impl> loaded = CheckpointAccess::fresh();
+    loaded->setWorldTag(current->worldTag);
     checkpoint_io::Reader reader(payload, std::string(source));
+    reader.world = current->worldTag;
     CheckpointAccess::io(reader, *loaded);
     if (!reader.atEnd())
         reader.corrupt("bytes left after the last field");

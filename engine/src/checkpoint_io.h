@@ -69,6 +69,7 @@ public:
         return static_cast<std::size_t>(n);
     }
     bool atEnd() const { return position_ == data_.size(); }
+    std::uint32_t world = 0;  ///< world tag given to the non-null ids read
     template <typename... Parts>
     [[noreturn]] void corrupt(Parts&&... parts) const {
         fail("checkpoint ", source_, ": corrupt payload at byte ", position_, ": ",

@@ -207,9 +207,11 @@ void ContactManager::destroy(std::uint32_t slot, BodyStore& bodies) {
 std::uint32_t ContactManager::find(const ProxyPair& pair, const ShapeStore& shapes,
                                    const BodyStore& bodies) const {
     // A destroyed shape's contacts went with it; its slot may already hold a new shape.
-    const ShapeRecord& shapeA = shapes.records[proxyToShape_[pair.first]];
-    const ShapeRecord& shapeB = shapes.records[proxyToShape_[pair.second]];
-    if (!(shapeA.alive && shapeA.proxy == pair.first && shapeB.alive &&
+    const std::uint32_t slotA = proxyToShape_[pair.first];
+    const std::uint32_t slotB = proxyToShape_[pair.second];
+    const ShapeRecord& shapeA = shapes.records[slotA];
+    const ShapeRecord& shapeB = shapes.records[slotB];
+    if (!(shapes.isAlive(slotA) && shapeA.proxy == pair.first && shapes.isAlive(slotB) &&
           shapeB.proxy == pair.second))
         return kNone;
     // Walk the list of a non-static body: a static body (the ground) may have thousands.

@@ -1,11 +1,12 @@
 #pragma once
-/// Dense storage of joints behind value handles, like SpringStore: parallel arrays indexed by a
-/// dense index, swap-with-last removal, so the order the solver sweeps them in depends only on
-/// the sequence of create and destroy calls.
+/// Dense storage of joints behind value handles, like SpringStore: parallel arrays indexed by the
+/// dense index of a HandlePool, swap-with-last removal, so the order the solver sweeps them in
+/// depends only on the sequence of create and destroy calls.
 
 #include <cstdint>
 #include <vector>
 
+#include "handle_pool.h"
 #include "tumble/joint.h"
 
 namespace tumble {
@@ -36,16 +37,12 @@ struct JointStepState {
     bool broken = false;
 };
 
-class JointStore {
+class JointStore : public DenseStore<JointId> {
     friend struct CheckpointAccess;  ///< checkpoint.cpp saves and restores the private state
 public:
+    JointStore() : DenseStore("JointId", "joint") {}
     JointId add(const JointRecord& record);
     void remove(JointId id);
-    bool isValid(JointId id) const;
-    /// Dense index of a valid id; refuses (InvalidArgument) a null, stale or unknown id.
-    std::uint32_t indexOf(JointId id) const;
-    JointId idAt(std::uint32_t index) const;
-    std::uint32_t count() const { return static_cast<std::uint32_t>(records.size()); }
 
     /// state -> previousState at the start of a step, and back if the step fails.
     void saveState() { previousState = state; }
@@ -54,16 +51,6 @@ public:
     std::vector<JointRecord> records;
     std::vector<JointStepState> state;
     std::vector<JointStepState> previousState;
-
-private:
-    struct Slot {
-        std::uint32_t generation = 0;
-        std::uint32_t dense = 0;
-        bool alive = false;
-    };
-    std::vector<Slot> slots_;
-    std::vector<std::uint32_t> slotOf_;     ///< per dense index
-    std::vector<std::uint32_t> freeSlots_;  ///< reused last-in first-out
 };
 
 }  // namespace tumble

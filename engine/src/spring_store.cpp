@@ -3,76 +3,29 @@
 #include <cmath>
 #include <limits>
 
-#include "tumble/core/error.h"
-
 namespace tumble {
 
 SpringId SpringStore::add(const SpringDef& def) {
-    std::uint32_t slotIndex;
-    if (freeSlots_.empty()) {
-        slotIndex = static_cast<std::uint32_t>(slots_.size());
-        slots_.push_back({});
-    } else {
-        slotIndex = freeSlots_.back();
-        freeSlots_.pop_back();
-    }
-    Slot& slot = slots_[slotIndex];
-    slot.generation += 1;
-    slot.dense = count();
-    slot.alive = true;
+    const SpringId id = pool_.add();
     defs.push_back(def);
     state.push_back({});
     previousState.push_back({});
-    slotOf_.push_back(slotIndex);
     if (def.formulation == SpringFormulation::Implicit)
         implicitCount += 1;
-    return SpringId{slotIndex, slot.generation};
+    return id;
 }
 
 void SpringStore::remove(SpringId id) {
-    const std::uint32_t index = indexOf(id);
-    if (defs[index].formulation == SpringFormulation::Implicit)
+    if (defs[indexOf(id)].formulation == SpringFormulation::Implicit)
         implicitCount -= 1;
-    const std::uint32_t last = count() - 1;
-    if (index != last) {
-        defs[index] = defs[last];
-        state[index] = state[last];
-        previousState[index] = previousState[last];
-        slotOf_[index] = slotOf_[last];
-        slots_[slotOf_[index]].dense = index;
-    }
-    defs.pop_back();
-    state.pop_back();
-    previousState.pop_back();
-    slotOf_.pop_back();
-    slots_[id.index].alive = false;
-    freeSlots_.push_back(id.index);
-}
-
-bool SpringStore::isValid(SpringId id) const {
-    return id.generation != 0 && id.index < slots_.size() && slots_[id.index].alive &&
-           slots_[id.index].generation == id.generation;
-}
-
-std::uint32_t SpringStore::indexOf(SpringId id) const {
-    if (!isValid(id)) {
-        fail("SpringId {index ", id.index, ", generation ", id.generation,
-             "} is null, stale or unknown");
-    }
-    return slots_[id.index].dense;
-}
-
-SpringId SpringStore::idAt(std::uint32_t index) const {
-    const std::uint32_t slot = slotOf_[index];
-    return SpringId{slot, slots_[slot].generation};
+    moveLastInto(pool_.remove(id), defs, state, previousState);
 }
 
 void SpringStore::reserve(std::size_t n) {
     defs.reserve(n);
     state.reserve(n);
     previousState.reserve(n);
-    slotOf_.reserve(n);
-    slots_.reserve(n);
+    pool_.reserve(n);
 }
 
 void SpringStore::removeAttachedTo(BodyId body) {

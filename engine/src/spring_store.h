@@ -1,8 +1,8 @@
 #pragma once
 /// Dense storage of spring-dampers and of per-body drag, behind value handles.
 ///
-/// Springs live in parallel contiguous arrays (definition, last-step state) indexed by a dense
-/// index; ids name a slot whose generation must match. Destroying a spring moves the last one
+/// Springs live in parallel contiguous arrays (definition, last-step state) indexed by the dense
+/// index of a HandlePool (handle_pool.h). Destroying a spring moves the last one
 /// into its place, so the order (which is the order the solver sweeps them in) depends only on the
 /// sequence of create and destroy calls. A net of thousands of threads costs one push_back each.
 
@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "body_store.h"
+#include "handle_pool.h"
 #include "tumble/spring.h"
 
 namespace tumble {
@@ -21,16 +22,12 @@ struct SpringStepState {
     bool slack = false;  ///< tension-only and carrying nothing
 };
 
-class SpringStore {
+class SpringStore : public DenseStore<SpringId> {
     friend struct CheckpointAccess;  ///< checkpoint.cpp saves and restores the private state
 public:
+    SpringStore() : DenseStore("SpringId", "spring") {}
     SpringId add(const SpringDef& def);
     void remove(SpringId id);
-    bool isValid(SpringId id) const;
-    /// Dense index of a valid id; refuses (InvalidArgument) a null, stale or unknown id.
-    std::uint32_t indexOf(SpringId id) const;
-    SpringId idAt(std::uint32_t index) const;
-    std::uint32_t count() const { return static_cast<std::uint32_t>(defs.size()); }
     void reserve(std::size_t count);
 
     /// Removes every spring attached to the body (its id is about to die).
@@ -48,16 +45,6 @@ public:
     std::vector<SpringStepState> state;
     std::vector<SpringStepState> previousState;
     std::uint32_t implicitCount = 0;  ///< how many use SpringFormulation::Implicit
-
-private:
-    struct Slot {
-        std::uint32_t generation = 0;
-        std::uint32_t dense = 0;
-        bool alive = false;
-    };
-    std::vector<Slot> slots_;
-    std::vector<std::uint32_t> slotOf_;     ///< per dense index
-    std::vector<std::uint32_t> freeSlots_;  ///< reused last-in first-out
 };
 
 /// Drag of the bodies that have any, in the order drag was first set.

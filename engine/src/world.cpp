@@ -1,5 +1,6 @@
 #include "tumble/world.h"
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 
@@ -25,11 +26,23 @@ double timed(Stage&& stage) {
 // h do not skip a step to rounding.
 constexpr Real kAccumulatorSlack = 1e-9;
 
+// A tag per World object, so one world refuses another's ids. Counted from 1 (0 is the tag of
+// null ids) and not reused until the count wraps after 2^32 - 1 worlds. Atomic: worlds may be
+// made on several threads. The tag is only ever compared, so it cannot change a result.
+std::uint32_t nextWorldTag() {
+    static std::atomic<std::uint32_t> count{0};
+    std::uint32_t tag = 0;
+    while (tag == 0)
+        tag = count.fetch_add(1, std::memory_order_relaxed) + 1;
+    return tag;
+}
+
 }  // namespace
 
 World::World(const WorldDef& def) : impl_(std::make_unique<Impl>()) {
     checks::worldDef(def);
     impl_->settings = def;
+    impl_->setWorldTag(nextWorldTag());
     impl_->contacts.contactMargin = def.contactMargin;
     impl_->contacts.aabbMargin = def.aabbMargin;
     impl_->connectLogs();

@@ -25,6 +25,9 @@
 
 namespace tumble {
 
+/// A body's mass properties as the compound of its shapes at their densities (world_shapes.cpp).
+MassProperties compoundMass(const ShapeStore& shapes, std::uint32_t firstShape);
+
 inline bool isFinite(const BodyMotion& m) {
     return m.center.allFinite() && m.orientation.coeffs().allFinite() &&
            m.linearVelocity.allFinite() && m.angularVelocity.allFinite();
@@ -59,6 +62,17 @@ struct World::Impl {
     /// need; the step's start goes back into it when the step ends (rollback, interpolation).
     std::vector<BodyMotion> stepStart;
     std::size_t stepStartCount = 0;
+    /// Put in every id this world hands out, and required of every id it is handed; unique per
+    /// World object (World::World), kept by a checkpoint load, never saved, never read by a step.
+    std::uint32_t worldTag = 0;
+
+    void setWorldTag(std::uint32_t tag) {
+        worldTag = tag;
+        bodies.setWorld(tag);
+        shapes.setWorld(tag);
+        springs.setWorld(tag);
+        joints.setWorld(tag);
+    }
 
     /// Points the stages at this world's event and warning logs (after construction or load).
     void connectLogs() {
@@ -108,6 +122,11 @@ struct World::Impl {
             contacts.refreshShape(shapes, slot, bodies, settings.timeStep);
         }
     }
+
+    // A shape leaves the broadphase (its contacts end), and comes back with its current filter
+    // and its body's current type, its joints' exclusions set again (world_bodies.cpp).
+    void detachShape(std::uint32_t slot);
+    void attachShape(std::uint32_t slot);
 
     // BodyInfo::extent after the body's shapes or centre of mass changed.
     void refreshExtent(std::uint32_t bodyIndex) {

@@ -52,12 +52,12 @@ void checkJointDef(const JointDef& def, const BodyStore& bodies) {
     if (def.bodyA.isNull())
         fail("JointDef.bodyA is null; a ", type, " joint needs a body at end A");
     if (!bodies.isValid(def.bodyA)) {
-        fail("JointDef.bodyA = ", describe(def.bodyA),
-             " is not a live body (destroyed or unknown); the anchor needs a body");
+        fail("JointDef.bodyA = ", describe(def.bodyA), " ", bodies.whyInvalid(def.bodyA),
+             "; the anchor needs a body");
     }
     if (!def.bodyB.isNull() && !bodies.isValid(def.bodyB)) {
-        fail("JointDef.bodyB = ", describe(def.bodyB),
-             " is not a live body (destroyed or unknown); use a null bodyB to join to the world");
+        fail("JointDef.bodyB = ", describe(def.bodyB), " ", bodies.whyInvalid(def.bodyB),
+             "; use a null bodyB to join to the world");
     }
     if (def.bodyA == def.bodyB) {
         fail("JointDef: bodyA and bodyB are the same body ", describe(def.bodyA),

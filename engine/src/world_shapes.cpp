@@ -7,9 +7,7 @@
 #include "world_impl.h"
 
 namespace tumble {
-namespace {
 
-// The body's mass properties as the compound of its shapes at their densities.
 MassProperties compoundMass(const ShapeStore& shapes, std::uint32_t firstShape) {
     std::vector<MassProperties> parts;
     for (std::uint32_t slot = firstShape; slot != BodyInfo::kNoShape;
@@ -19,6 +17,8 @@ MassProperties compoundMass(const ShapeStore& shapes, std::uint32_t firstShape) 
     }
     return combine(parts);
 }
+
+namespace {
 
 // Contacts leave up to the slop of penetration; on a shape less than twice the slop across that
 // is half its size or more (a 1 mm cube at the default 5 mm stays sunk on a corner). The size is

@@ -22,12 +22,11 @@ void checkSpringDef(const SpringDef& def, const BodyStore& bodies) {
     if (def.bodyA.isNull())
         fail("SpringDef.bodyA is null; a spring needs a body at end A");
     if (!bodies.isValid(def.bodyA)) {
-        fail("SpringDef.bodyA = ", describe(def.bodyA),
-             " is not a live body (destroyed or unknown)");
+        fail("SpringDef.bodyA = ", describe(def.bodyA), " ", bodies.whyInvalid(def.bodyA));
     }
     if (!def.bodyB.isNull() && !bodies.isValid(def.bodyB)) {
-        fail("SpringDef.bodyB = ", describe(def.bodyB),
-             " is not a live body (destroyed or unknown); use a null bodyB for a world anchor");
+        fail("SpringDef.bodyB = ", describe(def.bodyB), " ", bodies.whyInvalid(def.bodyB),
+             "; use a null bodyB for a world anchor");
     }
     if (def.bodyA == def.bodyB) {
         fail("SpringDef: bodyA and bodyB are the same body ", describe(def.bodyA),

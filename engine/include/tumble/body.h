@@ -10,10 +10,13 @@ namespace tumble {
 
 /// A value handle to a body. The world owns the body; the id stays valid until the body is
 /// destroyed, and a destroyed body's id is refused (its generation no longer matches) rather than
-/// aliasing a newer body. The zero id is null.
+/// aliasing a newer body. An id is refused by every world but the one that made it (the `world`
+/// tag). The zero id is null.
 struct BodyId {
     std::uint32_t index = 0;       ///< slot in the world's table
     std::uint32_t generation = 0;  ///< 0 means null; bumped each time the slot is reused
+    /// Tag of the World that made the id (0 in a null id): only checked, never part of a result.
+    std::uint32_t world = 0;
 
     bool isNull() const { return generation == 0; }
     friend bool operator==(BodyId, BodyId) = default;

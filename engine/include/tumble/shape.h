@@ -8,10 +8,11 @@
 
 namespace tumble {
 
-/// A value handle to a shape; same rules as BodyId (zero is null, generation checked).
+/// A value handle to a shape; same rules as BodyId (zero is null, generation and world checked).
 struct ShapeId {
-    std::uint32_t index = 0;
-    std::uint32_t generation = 0;
+    std::uint32_t index = 0;       ///< slot in the world's shape table
+    std::uint32_t generation = 0;  ///< 0 means null; bumped each time the slot is reused
+    std::uint32_t world = 0;       ///< tag of the World that made it (see BodyId::world)
 
     bool isNull() const { return generation == 0; }
     friend bool operator==(ShapeId, ShapeId) = default;

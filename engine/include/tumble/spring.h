@@ -20,10 +20,11 @@
 
 namespace tumble {
 
-/// A value handle to a spring, like BodyId: checked by generation, zero is null.
+/// A value handle to a spring, like BodyId: checked by generation and world, zero is null.
 struct SpringId {
     std::uint32_t index = 0;       ///< slot in the world's spring table
     std::uint32_t generation = 0;  ///< 0 means null; bumped each time the slot is reused
+    std::uint32_t world = 0;       ///< tag of the World that made it (see BodyId::world)
 
     bool isNull() const { return generation == 0; }
     friend bool operator==(SpringId, SpringId) = default;

@@ -141,8 +141,18 @@ public:
     BodyId createBody(const BodyDef& def);
     /// Destroys a body; its id and every copy of it become invalid.
     void destroyBody(BodyId id);
+    /// Does the id name a live body of this world? (False for another world's id.)
     bool isValid(BodyId id) const;
     int bodyCount() const;
+    /// Every body, in the order a step visits them (creation order until a body is destroyed:
+    /// then the last body takes the destroyed one's place).
+    std::vector<BodyId> bodies() const;
+    /// The body's shapes, in the order they were attached.
+    std::vector<ShapeId> bodyShapes(BodyId id) const;
+    /// The joints with the body at either end, in the order the solver sweeps them.
+    std::vector<JointId> bodyJoints(BodyId id) const;
+    /// The springs with the body at either end, in the order the solver sweeps them.
+    std::vector<SpringId> bodySprings(BodyId id) const;
 
     BodyType bodyType(BodyId id) const;
     Vec3 position(BodyId id) const;  ///< body origin (m)
@@ -155,6 +165,8 @@ public:
     Vec3 velocityAt(BodyId id, const Vec3& worldPoint) const;
     MassProperties massProperties(BodyId id) const;
     std::uint64_t userData(BodyId id) const;
+    Real linearDamping(BodyId id) const;   ///< (1/s)
+    Real angularDamping(BodyId id) const;  ///< (1/s)
     /// Pose interpolated between the previous and the current step: fraction 0 gives the previous
     /// pose, 1 the current one. For rendering between fixed steps (see advance()).
     Transform interpolatedTransform(BodyId id, Real fraction) const;
@@ -172,6 +184,22 @@ public:
     /// Refused on a static body.
     void setAngularVelocity(BodyId id, const Vec3& velocity);
     void setMassProperties(BodyId id, const MassProperties& mass);
+    /// Changes the body's type. Static: velocities become zero and the body leaves the awake
+    /// list. Kinematic: keeps its velocity and is always awake. Dynamic: takes the compound mass
+    /// of its shapes if any of them has ShapeDef::updateBodyMass, else the mass it was given
+    /// (BodyDef::mass or setMassProperties), and wakes. Static and kinematic bodies have no
+    /// mass (zero inverse mass and inertia) and lose their pending forces. The body's contacts
+    /// end and are found again by the next step (static bodies do not collide with each other);
+    /// what it touched wakes. Refuses (InvalidArgument), changing nothing: a half-space shape
+    /// on a body that would not be static, a joint that would join no dynamic body, and for
+    /// Dynamic a mass that is not physical.
+    void setBodyType(BodyId id, BodyType type);
+    /// (1/s), finite and >= 0 (BodyDef::linearDamping); acts from the next step.
+    void setLinearDamping(BodyId id, Real damping);
+    /// (1/s), finite and >= 0 (BodyDef::angularDamping); acts from the next step.
+    void setAngularDamping(BodyId id, Real damping);
+    /// Opaque to the engine, handed back by userData (BodyDef::userData).
+    void setUserData(BodyId id, std::uint64_t userData);
 
     // --- sleeping (see WorldDef::enableSleep) -------------------------------------------------
     /// Is the body simulated? Kinematic bodies are always awake, static bodies never.
@@ -196,6 +224,16 @@ public:
     bool isValid(ShapeId id) const;
     BodyId shapeBody(ShapeId id) const;
     const ShapeDef& shapeDef(ShapeId id) const;
+    /// Replaces the shape's material (ShapeDef::material), refused (InvalidArgument, naming the
+    /// field) as createShape refuses it. Friction, restitution and the friction lengths act from
+    /// the next step. A new density changes the body's mass only when that mass comes from its
+    /// shapes (a dynamic body given its mass by shapes with ShapeDef::updateBodyMass): it
+    /// becomes the compound of all its shapes. Wakes the body.
+    void setShapeMaterial(ShapeId id, const Material& material);
+    /// Replaces the shape's collision filter (ShapeDef::filter; every value is valid): its
+    /// contacts end now, and the next step finds those the new filter allows. Wakes the body
+    /// and what it touched.
+    void setShapeFilter(ShapeId id, const CollisionFilter& filter);
     /// The shape's world pose.
     Transform shapeTransform(ShapeId id) const;
     /// Tight bounding box at the shape's current pose (m).
