@@ -1,4 +1,4 @@
-// The contact solver: whole steps of the stack and pyramid scenes the validation cases check
+// The constraint solver: whole steps of the stack and pyramid scenes the validation cases check
 // (same builders, validation/cases/scenes.h), and the PGS sweep alone, per row and iteration.
 
 #include <benchmark/benchmark.h>
@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "scenes.h"
-#include "tumble/solver/contact_solver.h"
+#include "tumble/solver/constraint_solver.h"
 #include "tumble/tumble.h"
 
 namespace {
@@ -81,7 +81,7 @@ void BM_PgsRowIteration(benchmark::State& state) {
     SolverSettings settings;
     settings.iterations = iterations;
     settings.stabilisation = Stabilisation::Baumgarte;
-    ContactSolver solver;
+    ConstraintSolver solver;
     std::vector<PseudoVelocity> pseudo;
     for (auto _ : state) {
         // Each box sliding a little and falling, so every row has work to do.

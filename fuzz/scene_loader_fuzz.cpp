@@ -1,4 +1,4 @@
-// libFuzzer target: the scene-file loader of the `tumble` command (demos/cli) on arbitrary text.
+// libFuzzer target: the scene-file loader (scene/) on arbitrary text.
 // The text goes the whole way a file goes -- JSON parse, the strict scene parser, building the
 // world -- and a small enough scene is stepped once. An InvalidArgument (the project's one error
 // type, with its message) is the expected answer to bad input; a crash, undefined behaviour, a
@@ -13,7 +13,7 @@
 #include <fstream>
 #include <string>
 
-#include "scene.h"
+#include "tumble/scene/scene.h"
 
 namespace {
 

@@ -1,7 +1,7 @@
 // The O(n^2) reference broadphase: every pair tested, nothing remembered. Kept beside
 // SweepAndPrune so tests can compare against it and benchmarks can show where SAP pays off.
 
-#include "tumble/collision/broadphase.h"
+#include "tumble/collision/sweep_and_prune.h"
 #include "tumble/core/error.h"
 
 namespace tumble {

@@ -2,12 +2,7 @@
 /// The general convex query behind collideConvex: how far apart two posed convex shapes are, or
 /// how deep they overlap, with the normal and a witness point on each surface.
 ///
-/// Every shape is seen as a core plus a rounding radius: a sphere is its centre plus its radius, a
-/// capsule its segment plus its radius, the others themselves (radius 0). GJK runs on the cores,
-/// which are polytopes except for cylinders, so it ends exactly on a face of the Minkowski
-/// difference and the distance of rounded shapes is exact: separation = core distance - radii.
-///
-/// When the cores touch or overlap:
+/// Apart, the cores' GJK distance (gjk.h) gives it exactly. When the cores touch or overlap:
 /// - both cores polytopes (box, hull, sphere centre, capsule segment): the least overlap over the
 ///   separating axes (face normals of both, and the cross products of the edge pairs whose
 ///   Gauss-map arcs cross) is the exact penetration depth and its axis the exact normal
@@ -23,7 +18,7 @@
 ///   the true one, and deeper only when EPA stops on a face of the Minkowski difference that is
 ///   not the nearest and the GJK refinement cannot leave it (not measured for cylinders: there is
 ///   no closed-form reference).
-/// This file pair is the only door to libccd: no other file includes its headers.
+/// ccd_adapter.cpp is the only door to libccd: no other file includes its headers.
 ///
 /// EPA over MPR (measured on 5,000 random shallow box overlaps, gjk_epa_test): EPA's depth matches
 /// the separating-axis depth to 1e-12 m in every case; MPR's portal direction missed the minimum
@@ -31,6 +26,7 @@
 
 #include <cstdint>
 
+#include "gjk.h"
 #include "tumble/collision/shape.h"
 
 namespace tumble::detail {
@@ -50,28 +46,6 @@ struct ConvexContact {
     Vec3 pointA = Vec3::Zero();   ///< world, on A's surface (m)
     Vec3 pointB = Vec3::Zero();   ///< world, on B's surface (m)
 };
-
-/// GJK distance between the cores of two posed shapes.
-struct CoreDistance {
-    Real distance = 0;           ///< (m), 0 when the cores touch or overlap
-    Vec3 pointA = Vec3::Zero();  ///< world, closest point of A's core (m)
-    Vec3 pointB = Vec3::Zero();  ///< world, closest point of B's core (m)
-    bool overlapping =
-        false;           ///< the origin lies in (or within rounding of) the Minkowski difference
-    int iterations = 0;  ///< GJK iterations used
-};
-
-/// The rounding radius of a shape's core (m): the radius of a sphere or capsule, else 0.
-Real roundingRadius(const Shape& shape);
-
-/// The point of the shape's core farthest along `direction` (local frame, need not be unit). A
-/// sphere's core is its centre, a capsule's its segment. Half-spaces are not convex queries'
-/// shapes.
-Vec3 coreSupport(const Shape& shape, const Vec3& direction);
-
-/// GJK distance between the cores of `a` at `poseA` and `b` at `poseB`.
-CoreDistance coreDistance(const Shape& a, const Transform& poseA, const Shape& b,
-                          const Transform& poseB);
 
 /// The separation (or penetration), normal and witness points of two convex shapes. Neither may
 /// be a half-space. Allocation-free except when libccd runs (a cylinder in an overlapping pair,

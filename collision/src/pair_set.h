@@ -3,7 +3,7 @@
 
 #include <vector>
 
-#include "tumble/collision/broadphase.h"
+#include "tumble/collision/sweep_and_prune.h"
 
 namespace tumble::detail {
 

@@ -1,8 +1,8 @@
 #pragma once
-/// A shape's core posed in the world, shared by the GJK/libccd adapter and the separating-axis
+/// A shape's core posed in the world, shared by GJK, the libccd adapter and the separating-axis
 /// pass (internal to collision/).
 
-#include "ccd_adapter.h"
+#include "gjk.h"
 #include "tumble/collision/shape.h"
 
 namespace tumble::detail {

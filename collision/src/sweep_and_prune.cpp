@@ -37,7 +37,7 @@
 #include <functional>
 #include <iterator>
 
-#include "tumble/collision/broadphase.h"
+#include "tumble/collision/sweep_and_prune.h"
 
 #include "pair_set.h"
 #include "tumble/core/error.h"

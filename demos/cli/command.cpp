@@ -5,7 +5,7 @@
 #include <iostream>
 
 #include "run.h"
-#include "scene.h"
+#include "tumble/scene/scene.h"
 
 namespace tumble::cli {
 namespace {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "scene.h"
+#include "tumble/scene/scene.h"
 
 namespace tumble::cli {
 

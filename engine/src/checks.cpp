@@ -6,6 +6,7 @@
 #include <string>
 
 #include "tumble/core/error.h"
+#include "tumble/solver/contact_solver.h"
 
 namespace tumble::checks {
 namespace {

@@ -22,7 +22,7 @@
 #include "event_log.h"
 #include "shape_store.h"
 #include "step_context.h"
-#include "tumble/collision/broadphase.h"
+#include "tumble/collision/sweep_and_prune.h"
 #include "tumble/contact.h"
 #include "warning_log.h"
 

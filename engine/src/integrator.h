@@ -1,7 +1,7 @@
 #pragma once
 /// Semi-implicit (symplectic) Euler, split in the two halves the constraint solve sits between:
 ///
-///     u(n+1) = u(n) + h M^-1 f(n)          integrateVelocities  (then contacts, joints: later)
+///     u(n+1) = u(n) + h M^-1 f(n)          integrateVelocities  (then the constraint solve)
 ///     s(n+1) = s(n) + h S(s) u(n+1)        integratePositions   (with the NEW velocities)
 
 #include <span>

@@ -1,9 +1,9 @@
 #pragma once
 /// Islands and sleeping.
 ///
-/// An island is a set of dynamic bodies joined by touching contacts (manifold.pointCount > 0)
-/// and, later, joints. Static and kinematic bodies join no island: a pile on the ground is one
-/// island per group of touching bodies, not one for everything on the ground.
+/// An island is a set of dynamic bodies joined by touching contacts (manifold.pointCount > 0),
+/// springs and unbroken joints. Static and kinematic bodies join no island: a pile on the ground is
+/// one island per group of touching bodies, not one for everything on the ground.
 ///
 /// Falling asleep (the sleep stage, after the step's motion): each awake dynamic body's timer
 /// grows by h while it is still (its centre's speed plus its angular speed times its extent below
@@ -16,7 +16,8 @@
 ///
 /// Waking: the island of a sleeping body is not stored; it is found again by walking parked
 /// touching contacts from the body, which is what joined it when it fell asleep. A whole island
-/// wakes at once, with all its contacts active again.
+/// wakes at once, with all its contacts active again. The bodies a spring or joint links to an
+/// awake body are woken by the step (wakeSpringLinked, wakeJointLinked), not here.
 ///
 /// Determinism: union-find roots are the smallest awake-list position of each set, islands fall
 /// asleep in awake-list order and walks follow the body contact lists, all of which depend only

@@ -17,7 +17,7 @@
 #include "spring_store.h"
 #include "step_context.h"
 #include "tumble/contact.h"
-#include "tumble/solver/contact_solver.h"
+#include "tumble/solver/constraint_solver.h"
 
 namespace tumble {
 
@@ -32,6 +32,8 @@ public:
     SolverStats run(BodyStore& bodies, const ShapeStore& shapes, ContactManager& contacts,
                     SpringStore& springs, JointStore& joints, const StepContext& context,
                     const SolverSettings& settings);
+    /// Time of each of the solver's stages in the last run.
+    const SolverProfile& solverProfile() const { return solver_.profile(); }
     /// Dense indices of the joints that broke in the last run.
     std::span<const std::uint32_t> brokenJoints() const { return brokenJoints_; }
 
@@ -51,7 +53,7 @@ public:
                         const SolverSettings& settings);
 
 private:
-    ContactSolver solver_;
+    ConstraintSolver solver_;
     std::vector<SolverBody> solverBodies_;
     std::vector<ContactConstraint> constraints_;
     std::vector<std::uint32_t> constraintContact_;  ///< contact slot of each constraint

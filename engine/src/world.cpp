@@ -8,19 +8,13 @@
 #include "integrator.h"
 #include "joints.h"
 #include "tumble/core/error.h"
+#include "tumble/core/timed.h"
 #include "world_impl.h"
 
 namespace tumble {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-template <typename Stage>
-double timed(Stage&& stage) {
-    const Clock::time_point start = Clock::now();
-    stage();
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // advance() treats an accumulator within this fraction of h as a whole step, so frames of exactly
 // h do not skip a step to rounding.
@@ -336,13 +330,19 @@ StepStatus World::Impl::substep(const StepContext& context) {
         solverStats =
             solve.run(bodies, shapes, contacts, springs, joints, context, settings.solver);
     });
+    profile.solveStages += solve.solverProfile();
     profile.integrate += timed([&] {
         integratePositions(bodies, solve.pseudoVelocities(), context);
         solve.projectSprings(bodies, springs, context, settings.solver);
     });
     StepStatus status;
+    bool moved = true;  // the poses differ from those the bounds were last refreshed at
+    profile.finalize += timed([&] { status = checkFinite(moved); });
+    profile.bounds += timed([&] {
+        if (moved)
+            contacts.refreshBounds(shapes, bodies, context);
+    });
     profile.finalize += timed([&] {
-        status = checkFinite(context);
         if (status.ok()) {
             releaseBrokenJoints();
             impacts.update(contacts, bodies, settings.impactSpeedThreshold, pendingEvents.impact);

@@ -193,23 +193,23 @@ struct World::Impl {
 
     // Checks the substep's new state. On a non-finite body restores the state from before the
     // step (before its first substep); sleeping and static bodies did not move: only the awake
-    // ones are visited.
-    StepStatus checkFinite(const StepContext& context) {
+    // ones are visited. `moved` tells the bounds stage whether the poses now differ from those
+    // its last refresh saw: after a rollback only when earlier substeps had moved them.
+    StepStatus checkFinite(bool& moved) {
         for (const std::uint32_t i : bodies.awake) {
             if (!isFinite(bodies.motion[i])) {
                 bodies.restorePreviousMotion();  // the substep's start
+                moved = stepStartCount > 0;
                 if (stepStartCount > 0) {
                     for (std::size_t k = 0; k < stepStartCount; ++k) {
                         bodies.motion[bodies.awake[k]] = stepStart[k];
                         bodies.previousMotion[bodies.awake[k]] = stepStart[k];
                     }
                     stepStartCount = 0;
-                    contacts.refreshBounds(shapes, bodies, context);  // earlier substeps moved them
                 }
                 return {StepStatus::Code::NonFiniteState, bodies.idAt(i), SpringId{}};
             }
         }
-        contacts.refreshBounds(shapes, bodies, context);
         return {};
     }
 

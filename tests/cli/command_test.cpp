@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "cli_helpers.h"
-#include "scene.h"
+#include "tumble/scene/scene.h"
 
 namespace fs = std::filesystem;
 using namespace tumble::cli::test;

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "command.h"
-#include "scene.h"
+#include "tumble/scene/scene.h"
 
 namespace fs = std::filesystem;
 

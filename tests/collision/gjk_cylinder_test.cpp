@@ -10,6 +10,7 @@
 #include <random>
 
 #include "ccd_adapter.h"
+#include "gjk.h"
 #include "tumble/collision/narrowphase.h"
 
 namespace tumble::detail {

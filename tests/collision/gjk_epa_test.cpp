@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "ccd_adapter.h"
+#include "gjk.h"
 #include "pair_routines.h"
 
 namespace tumble::detail {

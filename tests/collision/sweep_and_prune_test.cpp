@@ -11,7 +11,7 @@
 #include <set>
 #include <vector>
 
-#include "tumble/collision/broadphase.h"
+#include "tumble/collision/sweep_and_prune.h"
 #include "tumble/core/error.h"
 
 namespace tumble {

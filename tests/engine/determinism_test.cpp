@@ -13,8 +13,8 @@
 #include <utility>
 #include <vector>
 
-#include "scene.h"
 #include "support/state_hash.h"
+#include "tumble/scene/scene.h"
 
 namespace tumble {
 namespace {

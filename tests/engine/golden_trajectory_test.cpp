@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "scene.h"
 #include "support/state_hash.h"
+#include "tumble/scene/scene.h"
 
 namespace tumble {
 namespace {

@@ -153,5 +153,27 @@ TEST(Substeps, AFailingSubstepRestoresTheStateBeforeTheStep) {
     EXPECT_EQ(world.stepCount(), 1u);
 }
 
+// The profile's stages nest: the solver's own stages are parts of the solve, every stage is a
+// part of the step, and with substeps each is summed over them (so the solve stages of a
+// resting box, which has a contact in every substep, are all timed).
+TEST(Substeps, ProfileStagesArePartsOfTheStep) {
+    World world(WorldDef{.substeps = 4});
+    const BodyId ground = world.createBody(BodyDef{.type = BodyType::Static});
+    world.createShape(ground, ShapeDef{.geometry = HalfSpace{}});
+    const BodyId box = world.createBody(BodyDef{.position = Vec3(0, 0, 0.5)});
+    world.createShape(box, ShapeDef{.geometry = Box{Vec3(0.5, 0.5, 0.5)}});
+    for (int i = 0; i < 10; ++i)
+        ASSERT_TRUE(world.step().ok());
+    const Profile& p = world.profile();
+    const SolverProfile& s = p.solveStages;
+    for (const double t : {s.prepare, s.velocity, s.relax, s.restitution, s.positions})
+        EXPECT_GT(t, 0);
+    EXPECT_LE(s.prepare + s.velocity + s.relax + s.restitution + s.positions, p.solve);
+    EXPECT_GT(p.bounds, 0);
+    EXPECT_LE(p.forces + p.broadphase + p.narrowphase + p.islands + p.solve + p.integrate +
+                  p.finalize + p.bounds + p.sleep,
+              p.total);
+}
+
 }  // namespace
 }  // namespace tumble

@@ -20,9 +20,32 @@ endif()
 file(WRITE ${WORK_DIR}/readme_example.cpp "${example}")
 
 run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
+
+# The installed headers are exactly those docs/ARCHITECTURE.md lists under "Public headers"
+# (the first ```text block after that heading), and no solver header is among them.
+file(READ ${ARCHITECTURE} architecture)
+string(FIND "${architecture}" "## Public headers" start)
+string(SUBSTRING "${architecture}" ${start} -1 section)
+string(REGEX MATCH "```text\n([^`]*)```" block "${section}")
+if(start LESS 0 OR NOT CMAKE_MATCH_1)
+  message(FATAL_ERROR "no list of public headers found in ${ARCHITECTURE}")
+endif()
+string(REGEX MATCHALL "tumble/[a-z_/]+\\.h" documented "${CMAKE_MATCH_1}")
+list(SORT documented)
+file(GLOB_RECURSE installed RELATIVE ${prefix}/include ${prefix}/include/*)
+list(SORT installed)
+if(NOT installed STREQUAL documented)
+  message(FATAL_ERROR "installed headers differ from the documented public headers:\n"
+                      "installed:  ${installed}\ndocumented: ${documented}")
+endif()
+if(installed MATCHES "tumble/solver/")
+  message(FATAL_ERROR "a solver header is installed: ${installed}")
+endif()
+
 run(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${WORK_DIR}/build -DCMAKE_PREFIX_PATH=${prefix}
     -DCMAKE_CXX_COMPILER=${CXX_COMPILER} -DCMAKE_BUILD_TYPE=Release
-    "-DCMAKE_CXX_FLAGS=${CXX_FLAGS}" -DREADME_EXAMPLE=${WORK_DIR}/readme_example.cpp)
+    "-DCMAKE_CXX_FLAGS=${CXX_FLAGS}" -DREADME_EXAMPLE=${WORK_DIR}/readme_example.cpp
+    -DPUBLIC_HEADERS_DIR=${prefix}/include)
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 run(${WORK_DIR}/build/consumer)
 if(NOT last_output MATCHES "fell 4\\.9")

@@ -1,6 +1,6 @@
 // The contact solver on hand-built constraints: no shapes, no engine.
 
-#include "tumble/solver/contact_solver.h"
+#include "tumble/solver/constraint_solver.h"
 
 #include <gtest/gtest.h>
 
@@ -21,7 +21,7 @@ struct Scene {
     std::vector<SolverBody> bodies;
     std::vector<ContactConstraint> constraints;
     std::vector<PseudoVelocity> pseudo;
-    ContactSolver solver;
+    ConstraintSolver solver;
     SolverSettings settings;
 
     explicit Scene(Real mass = 2, Real friction = 0.5, Real separation = 0) {

@@ -6,7 +6,7 @@
 #include <Eigen/Dense>
 #include <vector>
 
-#include "tumble/solver/contact_solver.h"
+#include "tumble/solver/constraint_solver.h"
 #include "tumble/solver/spring_block.h"
 
 namespace tumble {
@@ -163,7 +163,7 @@ TEST(SpringBlock, ContactSolverSolvesALongStiffChainInOneStep) {
         std::vector<PseudoVelocity> pseudo;
         SolverSettings settings;
         settings.springSolve = mode;
-        ContactSolver solver;
+        ConstraintSolver solver;
         solver.solve(bodies, none, pseudo, h, settings, rows);
         // The top link carries the weight of all 64 masses for the step.
         const Real topImpulse = -rows[0].impulse;

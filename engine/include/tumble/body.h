@@ -25,7 +25,7 @@ struct BodyId {
 enum class BodyType : std::uint8_t {
     Static,     ///< never moves; infinite mass
     Kinematic,  ///< moves with the velocity the application sets; infinite mass, ignores forces
-    Dynamic,    ///< moved by forces, gravity and (later) contacts and joints
+    Dynamic,    ///< moved by forces, gravity, contacts, springs and joints
 };
 
 /// Everything needed to create a body. Copied by World::createBody, never retained.

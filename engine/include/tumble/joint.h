@@ -1,7 +1,7 @@
 #pragma once
 /// Joints: ball-socket, hinge (revolute), slider (prismatic), fixed (weld) and distance (rod or
-/// rope), with limits, motors and breaking. Solved as rows with the contacts (see
-/// tumble/solver/joint_row.h for the rows and their stabilisation).
+/// rope), with limits, motors and breaking. Solved as rows with the contacts (the rows and their
+/// stabilisation: solver/include/tumble/solver/joint_row.h in the source tree).
 ///
 /// A joint is defined in the world frame at the poses the bodies have when it is created: the
 /// anchor is a world point, the axis a world direction, and the relative orientation of the
@@ -13,7 +13,7 @@
 
 #include "tumble/body.h"
 #include "tumble/core/math.h"
-#include "tumble/solver/joint_row.h"
+#include "tumble/core/solver_types.h"
 
 namespace tumble {
 

@@ -34,7 +34,7 @@
 #include <vector>
 
 #include "tumble/collision/aabb.h"
-#include "tumble/collision/broadphase.h"
+#include "tumble/collision/sweep_and_prune.h"
 
 namespace tumble {
 

@@ -44,59 +44,10 @@
 #include <span>
 #include <vector>
 
-#include "tumble/solver/joint_row.h"
+#include "tumble/core/solver_types.h"
 #include "tumble/solver/solver_body.h"
-#include "tumble/solver/spring_block.h"
-#include "tumble/solver/spring_row.h"
 
 namespace tumble {
-
-enum class FrictionModel : std::uint8_t {
-    Coupled,  ///< disc projection: isotropic (default)
-    Box,      ///< two independent tangent rows (the study's Bullet)
-};
-
-enum class Stabilisation : std::uint8_t {
-    SplitImpulse,  ///< pseudo-velocities, never in the real velocity (default)
-    Baumgarte,     ///< bias k_erp / h * depth in the velocity rows (Bullet's default)
-};
-
-/// How the implicit spring rows are solved (spring_block.h).
-enum class SpringSolve : std::uint8_t {
-    Direct,     ///< all rows at once by a sparse factorisation: implicit Euler at any stiffness
-    Iterative,  ///< Gauss-Seidel next to the contacts: cheaper, wrong when unconverged
-};
-
-struct SolverSettings {
-    int iterations = 10;  ///< PGS sweeps over the velocity rows, >= 1
-    /// Split impulse: sweeps without the bias after the biased ones, removing the push-out
-    /// velocity, >= 0. Too few leave some of it in the real velocity: a 100 kg box on a 1 kg box
-    /// bounced on the ground with 4 or 6 and came to rest with 8 or more.
-    int relaxIterations = 10;
-    Real tolerance = 0;   ///< (m/s), >= 0: stop early when no impulse changes a velocity
-                          ///< by more than this in a sweep; 0 runs the full budget
-    Real relaxation = 1;  ///< successive over-relaxation factor, in (0, 2)
-    FrictionModel friction = FrictionModel::Coupled;
-    Stabilisation stabilisation = Stabilisation::SplitImpulse;
-    Real baumgarte = 0.2;  ///< k_erp, dimensionless, in [0, 1]
-    Real splitImpulseFactor =
-        0.2;  ///< fraction of the depth beyond the slop removed per step by split impulse, (0, 1]
-    Real slop = 0.005;  ///< penetration left alone (m), >= 0
-    Real restitutionThreshold =
-        1;                  ///< approach speed below which contacts are inelastic (m/s), >= 0
-    bool warmStart = true;  ///< start from the cached impulses
-    SpringSolve springSolve = SpringSolve::Direct;
-    /// Post-stabilisation of implicit springs: after the positions move, remove the length a
-    /// spring gained by turning within the step, which the linearised solve cannot see (see
-    /// SolveStage::projectSprings). Off reproduces the plain linearised implicit step.
-    bool projectSprings = true;
-    /// Implicit geometric stiffness of joints' point rows for the motion a step cannot resolve
-    /// (see applyJointGeometricStiffness); off reproduces the explicit lever arms.
-    bool jointGeometricStiffness = true;
-    /// Ball joints' point rows: one exact sparse block solve per sweep (buildJointBlockRows)
-    /// or Gauss-Seidel with the other joint rows.
-    SpringSolve jointSolve = SpringSolve::Direct;
-};
 
 /// The two friction directions the solver uses for normal n (unit): orthonormal, right-handed
 /// with n, and a deterministic function of n. Callers caching friction impulses between steps
@@ -181,68 +132,42 @@ struct ContactConstraint {
     Real angularReach = 0;       ///< farthest point from either centre of mass (m)
 };
 
-struct SolverStats {
-    int iterations = 0;           ///< velocity sweeps actually run
-    Real maxResidual = 0;         ///< largest complementarity residual after the solve (m/s)
-    Real deepestPenetration = 0;  ///< largest -separation at the start of the step (m), >= 0
-};
-
 /// Extra velocity state for split impulse: moves positions this step only.
 struct PseudoVelocity {
     Vec3 linear = Vec3::Zero();
     Vec3 angular = Vec3::Zero();
 };
 
+/// The contact rows' part of a solve (ConstraintSolver runs the stages and the other rows).
+/// Stateless between calls: everything a step carries over lives in the constraints.
 class ContactSolver {
 public:
-    /// Solves the contacts for one step of length h. `bodies` hold the velocities after forces;
-    /// on return they hold the constrained velocities, `pseudo` the split-impulse velocities
-    /// (zero under Baumgarte) to add when integrating positions only. Impulses are written back
-    /// into `constraints` for warm starting the next step. Allocates only when the arrays grow.
-    /// Implicit spring rows (spring_row.h), when given, are solved first in every biased and
-    /// relax sweep alike (they are forces, not stabilisation); their impulses are written back.
-    /// Joint rows (joint_row.h), when given, are solved after the springs and before the
-    /// contacts in every sweep, with the same bias as the contacts; impulses written back.
-    SolverStats solve(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
-                      std::vector<PseudoVelocity>& pseudo, Real h, const SolverSettings& settings,
-                      std::span<SpringRow> springs = {}, std::span<JointRow> joints = {});
-
-private:
+    /// Effective masses, friction bases, approach speeds and impact times of every point, then
+    /// the warm start: the cached impulses applied to `bodies` (all of them after every approach
+    /// speed is measured).
     void prepare(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints, Real h,
-                 const SolverSettings& settings);
-    /// Runs up to `sweeps` PGS sweeps with the given bias factor; returns the number run.
-    int runSweeps(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
-                  std::span<SpringRow> springs, const SolverSettings& settings, Real inverseH,
-                  Real bias, int sweeps);
+                 const SolverSettings& settings) const;
+    /// One PGS sweep over the contacts with the given bias factor; returns the largest velocity
+    /// change an impulse made (m/s).
     Real solveVelocitySweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                             const SolverSettings& settings, Real inverseH, Real bias) const;
-    Real solveAngularFriction(SolverBody& a, SolverBody& b, ContactConstraint& c, Real omega) const;
-    void solveNormals(SolverBody& a, SolverBody& b, ContactConstraint& c,
-                      const SolverSettings& settings, Real inverseH, Real bias,
-                      Real& largestChange) const;
     void applyRestitution(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
-                          const SolverSettings& settings, Real inverseH, Real baumgarteBias) const;
+                          const SolverSettings& settings, Real h, Real baumgarteBias) const;
+    /// Split impulse: the position correction of the speculative points that bounced.
     void correctBounces(std::span<const SolverBody> bodies,
                         std::span<ContactConstraint> constraints,
                         std::vector<PseudoVelocity>& pseudo, Real inverseH,
                         const SolverSettings& settings) const;
+    /// Largest complementarity residual of the contacts at the current velocities (m/s).
     Real residual(std::span<const SolverBody> bodies,
                   std::span<const ContactConstraint> constraints, const SolverSettings& settings,
                   Real inverseH, Real bias) const;
 
-    SpringBlockSolver springBlock_;
-    bool directSprings_ = false;  ///< this step's springs go through springBlock_
-    /// Split impulse's position pass for the joints (solveJointPositions) on `pseudo`.
-    void correctJoints(std::span<const SolverBody> bodies, std::vector<PseudoVelocity>& pseudo,
-                       Real inverseH, const SolverSettings& settings);
-
-    std::span<JointRow> joints_;            ///< of the solve in progress
-    Real jointBias_ = 0;                    ///< their bias in the velocity sweeps (Baumgarte only)
-    std::vector<Mat3> geometricStiffness_;  ///< scratch of applyJointGeometricStiffness
-    SpringBlockSolver jointBlock_;          ///< ball joints' point rows (jointSolve Direct)
-    std::vector<SpringRow> jointBlockRows_;
-    bool directJoints_ = false;             ///< this step's ball joints go through jointBlock_
-    std::vector<SolverBody> pseudoBodies_;  ///< the joints' position pass works on these
+private:
+    Real solveAngularFriction(SolverBody& a, SolverBody& b, ContactConstraint& c, Real omega) const;
+    void solveNormals(SolverBody& a, SolverBody& b, ContactConstraint& c,
+                      const SolverSettings& settings, Real inverseH, Real bias,
+                      Real& largestChange) const;
 };
 
 }  // namespace tumble

@@ -1,5 +1,5 @@
 #pragma once
-/// Joints as constraint rows, solved by the contact solver's PGS sweeps before the contacts,
+/// Joints as constraint rows, solved in ConstraintSolver's PGS sweeps before the contacts,
 /// with the same warm starting and stabilisation.
 ///
 /// Every joint has one block of equality rows, solved exactly in each sweep (so a ball joint has
@@ -47,18 +47,11 @@
 #include <span>
 #include <vector>
 
+#include "tumble/core/solver_types.h"
 #include "tumble/solver/solver_body.h"
 #include "tumble/solver/spring_row.h"
 
 namespace tumble {
-
-enum class JointType : std::uint8_t {
-    Ball,      ///< point coincidence: 3 linear rows
-    Hinge,     ///< ball + 2 angular rows: rotation about one axis only (revolute)
-    Slider,    ///< 2 linear + 3 angular rows: translation along one axis only (prismatic)
-    Fixed,     ///< ball + 3 angular rows: weld
-    Distance,  ///< one row along the line between the anchors: rod (equality) or rope (max)
-};
 
 struct JointRow {
     JointType type = JointType::Ball;

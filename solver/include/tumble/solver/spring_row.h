@@ -1,6 +1,6 @@
 #pragma once
-/// Implicit spring-dampers as soft constraint rows (Catto's soft constraints), solved by the
-/// contact solver's PGS sweeps next to the contacts.
+/// Implicit spring-dampers as soft constraint rows (Catto's soft constraints), solved in
+/// ConstraintSolver's PGS sweeps next to the contacts.
 ///
 /// A spring of rest length L0, stiffness k and damping c between anchors at distance L pulls with
 /// the tension k (L - L0) + c dL/dt. Implicit Euler on it, with C = L - L0 and J v = dL/dt, asks

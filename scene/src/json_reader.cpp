@@ -1,4 +1,4 @@
-#include "json_reader.h"
+#include "tumble/scene/json_reader.h"
 
 #include <cmath>
 #include <numbers>

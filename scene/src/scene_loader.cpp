@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "scene_parts.h"
+#include "tumble/solver/contact_solver.h"  // checkSolverSettings
 
 namespace tumble::cli {
 namespace {

@@ -8,8 +8,8 @@
 #include <variant>
 #include <vector>
 
-#include "json_reader.h"
 #include "tumble/lumped.h"
+#include "tumble/scene/json_reader.h"
 #include "tumble/tumble.h"
 
 namespace tumble::cli {

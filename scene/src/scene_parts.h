@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "json_reader.h"
-#include "scene.h"
+#include "tumble/scene/json_reader.h"
+#include "tumble/scene/scene.h"
 
 namespace tumble::cli {
 

@@ -1,0 +1,95 @@
+#pragma once
+/// What the constraint solver and the public API both speak (a shared vocabulary, like math.h):
+/// the solver's settings (WorldDef::solver), what it reports (World::solverStats, the solve's
+/// stage times in Profile) and the joint types. solver/ reads them; users set and read them
+/// through tumble/world.h, which includes this header.
+
+#include <cstdint>
+
+#include "tumble/core/math.h"
+
+namespace tumble {
+
+enum class FrictionModel : std::uint8_t {
+    Coupled,  ///< disc projection: isotropic (default)
+    Box,      ///< two independent tangent rows (the study's Bullet)
+};
+
+enum class Stabilisation : std::uint8_t {
+    SplitImpulse,  ///< pseudo-velocities, never in the real velocity (default)
+    Baumgarte,     ///< bias k_erp / h * depth in the velocity rows (Bullet's default)
+};
+
+/// How the implicit spring rows are solved (spring_block.h).
+enum class SpringSolve : std::uint8_t {
+    Direct,     ///< all rows at once by a sparse factorisation: implicit Euler at any stiffness
+    Iterative,  ///< Gauss-Seidel next to the contacts: cheaper, wrong when unconverged
+};
+
+struct SolverSettings {
+    int iterations = 10;  ///< PGS sweeps over the velocity rows, >= 1
+    /// Split impulse: sweeps without the bias after the biased ones, removing the push-out
+    /// velocity, >= 0. Too few leave some of it in the real velocity: a 100 kg box on a 1 kg box
+    /// bounced on the ground with 4 or 6 and came to rest with 8 or more.
+    int relaxIterations = 10;
+    Real tolerance = 0;   ///< (m/s), >= 0: stop early when no impulse changes a velocity
+                          ///< by more than this in a sweep; 0 runs the full budget
+    Real relaxation = 1;  ///< successive over-relaxation factor, in (0, 2)
+    FrictionModel friction = FrictionModel::Coupled;
+    Stabilisation stabilisation = Stabilisation::SplitImpulse;
+    Real baumgarte = 0.2;  ///< k_erp, dimensionless, in [0, 1]
+    Real splitImpulseFactor =
+        0.2;  ///< fraction of the depth beyond the slop removed per step by split impulse, (0, 1]
+    Real slop = 0.005;  ///< penetration left alone (m), >= 0
+    Real restitutionThreshold =
+        1;                  ///< approach speed below which contacts are inelastic (m/s), >= 0
+    bool warmStart = true;  ///< start from the cached impulses
+    SpringSolve springSolve = SpringSolve::Direct;
+    /// Post-stabilisation of implicit springs: after the positions move, remove the length a
+    /// spring gained by turning within the step, which the linearised solve cannot see (see
+    /// SolveStage::projectSprings). Off reproduces the plain linearised implicit step.
+    bool projectSprings = true;
+    /// Implicit geometric stiffness of joints' point rows for the motion a step cannot resolve
+    /// (see applyJointGeometricStiffness); off reproduces the explicit lever arms.
+    bool jointGeometricStiffness = true;
+    /// Ball joints' point rows: one exact sparse block solve per sweep (buildJointBlockRows)
+    /// or Gauss-Seidel with the other joint rows.
+    SpringSolve jointSolve = SpringSolve::Direct;
+};
+
+enum class JointType : std::uint8_t {
+    Ball,      ///< point coincidence: 3 linear rows
+    Hinge,     ///< ball + 2 angular rows: rotation about one axis only (revolute)
+    Slider,    ///< 2 linear + 3 angular rows: translation along one axis only (prismatic)
+    Fixed,     ///< ball + 3 angular rows: weld
+    Distance,  ///< one row along the line between the anchors: rod (equality) or rope (max)
+};
+
+/// Wall-clock time of each stage of one constraint solve (s), in the order the stages run
+/// (ConstraintSolver::solve).
+struct SolverProfile {
+    double prepare = 0;   ///< effective masses and warm start of every row; the springs' and ball
+                          ///< joints' block factorisations
+    double velocity = 0;  ///< the velocity sweeps (biased under split impulse)
+    double relax = 0;     ///< split impulse's sweeps without the bias
+    double restitution = 0;  ///< bounces, and the residual measured after them
+    double positions = 0;    ///< split impulse's position passes: bounces, joints
+
+    SolverProfile& operator+=(const SolverProfile& other) {
+        prepare += other.prepare;
+        velocity += other.velocity;
+        relax += other.relax;
+        restitution += other.restitution;
+        positions += other.positions;
+        return *this;
+    }
+};
+
+/// What a solve reports.
+struct SolverStats {
+    int iterations = 0;           ///< velocity sweeps actually run
+    Real maxResidual = 0;         ///< largest complementarity residual after the solve (m/s)
+    Real deepestPenetration = 0;  ///< largest -separation at the start of the step (m), >= 0
+};
+
+}  // namespace tumble

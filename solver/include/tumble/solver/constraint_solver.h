@@ -1,0 +1,75 @@
+#pragma once
+/// The constraint solve of one step: every row -- implicit springs, joints, contacts -- on one
+/// set of solver bodies, in a fixed list of stages (solve()), each timed into a SolverProfile:
+///
+///   prepare      effective masses and warm start of every row; the springs' and the ball
+///                joints' block factorisations; the joints' geometric stiffness
+///   velocity     `iterations` PGS sweeps: springs, joints, contacts (biased under split impulse)
+///   relax        split impulse: `relaxIterations` sweeps without the bias; the difference is
+///                the pseudo-velocity
+///   restitution  bounces as velocity targets; the residual measured after them
+///   positions    split impulse's position passes on the pseudo-velocities: bounces, joints
+///
+/// The rows' own derivations are with them: contact_solver.h, spring_row.h and spring_block.h,
+/// joint_row.h. Deterministic: every row kind is solved in array order, in the same order in
+/// every sweep.
+
+#include <span>
+#include <vector>
+
+#include "tumble/core/solver_types.h"
+#include "tumble/solver/contact_solver.h"
+#include "tumble/solver/joint_row.h"
+#include "tumble/solver/solver_body.h"
+#include "tumble/solver/spring_block.h"
+#include "tumble/solver/spring_row.h"
+
+namespace tumble {
+
+class ConstraintSolver {
+public:
+    /// Solves the rows for one step of length h. `bodies` hold the velocities after forces;
+    /// on return they hold the constrained velocities, `pseudo` the split-impulse velocities
+    /// (zero under Baumgarte) to add when integrating positions only. Impulses are written back
+    /// into `constraints` for warm starting the next step. Allocates only when the arrays grow.
+    /// Implicit spring rows (spring_row.h), when given, are solved first in every biased and
+    /// relax sweep alike (they are forces, not stabilisation); their impulses are written back.
+    /// Joint rows (joint_row.h), when given, are solved after the springs and before the
+    /// contacts in every sweep, with the same bias as the contacts; impulses written back.
+    SolverStats solve(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
+                      std::vector<PseudoVelocity>& pseudo, Real h, const SolverSettings& settings,
+                      std::span<SpringRow> springs = {}, std::span<JointRow> joints = {});
+    /// Time of each stage of the last solve.
+    const SolverProfile& profile() const { return profile_; }
+
+private:
+    /// The prepare stage; returns the deepest penetration (m).
+    Real prepare(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
+                 std::span<SpringRow> springs, std::span<JointRow> joints, Real h,
+                 const SolverSettings& settings);
+    /// The relax stage: fills `pseudo` (split impulse) or zeroes it (Baumgarte).
+    void relax(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
+               std::span<SpringRow> springs, std::vector<PseudoVelocity>& pseudo,
+               const SolverSettings& settings, Real inverseH);
+    /// Runs up to `sweeps` PGS sweeps with the given bias factor; returns the number run.
+    int runSweeps(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
+                  std::span<SpringRow> springs, const SolverSettings& settings, Real inverseH,
+                  Real bias, int sweeps);
+    /// Split impulse's position pass for the joints (solveJointPositions) on `pseudo`.
+    void correctJoints(std::span<const SolverBody> bodies, std::vector<PseudoVelocity>& pseudo,
+                       Real inverseH, const SolverSettings& settings);
+
+    ContactSolver contacts_;
+    SolverProfile profile_;
+    SpringBlockSolver springBlock_;
+    bool directSprings_ = false;            ///< this step's springs go through springBlock_
+    std::span<JointRow> joints_;            ///< of the solve in progress
+    Real jointBias_ = 0;                    ///< their bias in the velocity sweeps (Baumgarte only)
+    std::vector<Mat3> geometricStiffness_;  ///< scratch of applyJointGeometricStiffness
+    SpringBlockSolver jointBlock_;          ///< ball joints' point rows (jointSolve Direct)
+    std::vector<SpringRow> jointBlockRows_;
+    bool directJoints_ = false;             ///< this step's ball joints go through jointBlock_
+    std::vector<SolverBody> pseudoBodies_;  ///< the joints' position pass works on these
+};
+
+}  // namespace tumble
