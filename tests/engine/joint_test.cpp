@@ -10,6 +10,7 @@
 #include <string>
 
 #include "refusal.h"
+#include "testkit/scenes.h"
 #include "tumble/world.h"
 
 namespace tumble {
@@ -20,13 +21,7 @@ using test::refusal;
 
 constexpr Real kGravity = 9.81;
 
-WorldDef quietWorld(Real h = 1.0 / 60.0) {
-    WorldDef def;
-    def.gravity = Vec3(0, 0, -kGravity);
-    def.timeStep = h;
-    def.enableSleep = false;
-    return def;
-}
+using testkit::quietWorld;
 
 BodyId addBody(World& world, const Vec3& position, Real mass = 1,
                BodyType type = BodyType::Dynamic) {
