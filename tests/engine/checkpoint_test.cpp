@@ -16,6 +16,7 @@
 
 #include "checkpoint_io.h"
 #include "refusal.h"
+#include "testkit/scenes.h"
 #include "tumble/checkpoint.h"
 #include "tumble/lumped.h"
 #include "tumble/world.h"
@@ -178,16 +179,11 @@ Scene netScene() {
     Scene s;
     const BodyId ground = addBody(s, Vec3::Zero(), BodyType::Static);
     s.world.createShape(ground, ShapeDef{.geometry = HalfSpace{}});
-    NetDef net;
-    net.rows = 12;
-    net.columns = 12;
-    net.meshSize = 0.1;
-    net.center = Vec3(0, 0, 1.5);
+    // The soak's net, lighter and finer, thrown down.
+    NetDef net = testkit::captureNet(12, 0.1, Vec3(0, 0, 1.5));
     net.node.mass = 0.01;
     net.node.radius = 0.01;
-    net.node.collide = true;
     net.cornerMass = 0.2;
-    net.thread.axialRigidity = 2e3;
     net.thread.damping = 0.05;
     net.velocity = Vec3(0, 0, -1);
     net.spreadSpeed = 1;
