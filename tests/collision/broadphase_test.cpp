@@ -264,6 +264,81 @@ TYPED_TEST(Broadphases, RaycastMatchesBruteForce) {
     EXPECT_GT(closestHits, 100);
 }
 
+// The hand-checked case's broadphase: the grid with 1 m cells, so that touching faces lie on
+// cell planes.
+template <class Broadphase>
+Broadphase smallCaseBroadphase() {
+    return Broadphase{};
+}
+template <>
+GridBroadphase smallCaseBroadphase<GridBroadphase>() {
+    return GridBroadphase(1.0);
+}
+
+// The case's second static box: for SweepAndPrune the first one's twin (coincident endpoints on
+// every axis), for the grid a slab over 40 x 40 x 3 cells (oversized).
+template <class Broadphase>
+Aabb smallCaseSlab() {
+    return {Vec3(0, 0, 0), Vec3(2, 2, 2)};
+}
+template <>
+Aabb smallCaseSlab<GridBroadphase>() {
+    return {Vec3(-20, -20, 0), Vec3(20, 20, 2)};
+}
+
+TYPED_TEST(Broadphases, FilterStaticTouchingAndExclusion) {
+    TypeParam broadphase = smallCaseBroadphase<TypeParam>();
+    // a and b touch on the plane x = 1, for the grid a cell plane.
+    const std::uint32_t a = broadphase.add({Vec3(0, 0, 0), Vec3(1, 1, 1)}, {});
+    const std::uint32_t b = broadphase.add({Vec3(1, 0, 0), Vec3(2, 1, 1)}, {});
+    ProxyFilter staticFilter;
+    staticFilter.isStatic = true;
+    staticFilter.category = 1 | 2;
+    const std::uint32_t c = broadphase.add({Vec3(0, 0, 0), Vec3(2, 2, 2)}, staticFilter);
+    const std::uint32_t d = broadphase.add(smallCaseSlab<TypeParam>(), staticFilter);
+    ProxyFilter oneWay;
+    oneWay.category = 2;
+    oneWay.mask = 2;
+    const std::uint32_t e = broadphase.add({Vec3(0.5, 0.5, 0.5), Vec3(0.6, 0.6, 0.6)}, oneWay);
+    broadphase.update();
+    if constexpr (std::is_same_v<TypeParam, GridBroadphase>) {
+        EXPECT_EQ(broadphase.oversizedCount(), 1u);  // d covers 40 x 40 x 3 cells
+    }
+    // c-d are both static; e pairs with c and d (category 2) but, its mask refusing
+    // category 1, with neither a nor b although both accept it.
+    const std::vector<ProxyPair> expected{{a, b}, {a, c}, {a, d}, {b, c}, {b, d}, {c, e}, {d, e}};
+    EXPECT_EQ(broadphase.pairs(), expected);
+    EXPECT_EQ(broadphase.addedPairs(), expected);
+    broadphase.setPairExcluded(b, a, true);
+    broadphase.update();
+    EXPECT_EQ(broadphase.removedPairs(), (std::vector<ProxyPair>{{a, b}}));
+    EXPECT_TRUE(broadphase.addedPairs().empty());
+    broadphase.update();
+    EXPECT_TRUE(broadphase.removedPairs().empty());
+    EXPECT_TRUE(broadphase.addedPairs().empty());
+    broadphase.setPairExcluded(a, b, false);
+    // A hair apart (in the grid, in one cell less).
+    broadphase.move(b, {Vec3(1 + 1e-9, 0, 0), Vec3(2, 1, 1)});
+    broadphase.update();
+    EXPECT_TRUE(broadphase.addedPairs().empty());
+    EXPECT_TRUE(broadphase.removedPairs().empty());
+    broadphase.move(b, {Vec3(1, 0, 0), Vec3(2, 1, 1)});
+    broadphase.update();
+    EXPECT_EQ(broadphase.addedPairs(), (std::vector<ProxyPair>{{a, b}}));
+    // Pairs found in several cells are reported once and leave once.
+    broadphase.move(a, {Vec3(0.5, 0.5, 0.5), Vec3(3.5, 3.5, 3.5)});
+    broadphase.update();
+    EXPECT_EQ(broadphase.pairs(), expected);
+    broadphase.remove(c);
+    broadphase.remove(d);
+    broadphase.update();
+    EXPECT_EQ(broadphase.removedPairs(),
+              (std::vector<ProxyPair>{{a, c}, {a, d}, {b, c}, {b, d}, {c, e}, {d, e}}));
+    EXPECT_EQ(broadphase.pairs(), (std::vector<ProxyPair>{{a, b}}));
+    EXPECT_EQ(broadphase.proxyCount(), 3u);
+    EXPECT_TRUE(broadphase.isConsistent());
+}
+
 TYPED_TEST(Broadphases, RefusesBadInput) {
     TypeParam broadphase;
     const Real nan = std::numeric_limits<Real>::quiet_NaN();

@@ -1,6 +1,6 @@
-// What only SweepAndPrune has: the sweep axis that follows the boxes' spread, and a small
-// hand-checked case of filters, static pairs, touching faces and exclusion. The randomised
-// comparisons with the brute force, shared with GridBroadphase, are in broadphase_test.cpp.
+// What only SweepAndPrune has: the sweep axis that follows the boxes' spread. What it shares
+// with GridBroadphase (the randomised comparisons with the brute force, a small hand-checked
+// case) is tested on both in broadphase_test.cpp.
 
 #include <gtest/gtest.h>
 
@@ -61,45 +61,6 @@ TEST(SweepAndPrune, SweepAxisFollowsTheSpreadWithHysteresis) {
     }
     EXPECT_EQ(found, expected);
     EXPECT_FALSE(expected.empty());
-}
-
-TEST(SweepAndPrune, FilterStaticTouchingAndExclusion) {
-    SweepAndPrune sap;
-    const std::uint32_t a = sap.add({Vec3(0, 0, 0), Vec3(1, 1, 1)}, {});
-    const std::uint32_t b = sap.add({Vec3(1, 0, 0), Vec3(2, 1, 1)}, {});  // touches a's face
-    ProxyFilter staticFilter;
-    staticFilter.isStatic = true;
-    staticFilter.category = 1 | 2;
-    const std::uint32_t c = sap.add({Vec3(0, 0, 0), Vec3(2, 2, 2)}, staticFilter);
-    const std::uint32_t d = sap.add({Vec3(0, 0, 0), Vec3(2, 2, 2)}, staticFilter);
-    ProxyFilter oneWay;
-    oneWay.category = 2;
-    oneWay.mask = 2;  // a accepts category 2, but this one does not accept category 1
-    const std::uint32_t e = sap.add({Vec3(0.5, 0.5, 0.5), Vec3(0.6, 0.6, 0.6)}, oneWay);
-    sap.update();
-    // c-d are both static; e pairs with c and d (category 2) but, its mask refusing
-    // category 1, with neither a nor b although both accept it.
-    const std::vector<ProxyPair> expected{{a, b}, {a, c}, {a, d}, {b, c}, {b, d}, {c, e}, {d, e}};
-    EXPECT_EQ(sap.pairs(), expected);
-    EXPECT_EQ(sap.addedPairs(), expected);
-    sap.setPairExcluded(b, a, true);
-    sap.update();
-    EXPECT_EQ(sap.removedPairs(), (std::vector<ProxyPair>{{a, b}}));
-    EXPECT_TRUE(sap.addedPairs().empty());
-    sap.update();  // nothing changed: nothing reported
-    EXPECT_TRUE(sap.removedPairs().empty());
-    EXPECT_TRUE(sap.addedPairs().empty());
-    sap.setPairExcluded(a, b, false);
-    sap.move(b, {Vec3(1 + 1e-9, 0, 0), Vec3(2, 1, 1)});  // now a hair apart
-    sap.update();
-    EXPECT_TRUE(sap.addedPairs().empty());
-    sap.move(b, {Vec3(1, 0, 0), Vec3(2, 1, 1)});
-    sap.update();
-    EXPECT_EQ(sap.addedPairs(), (std::vector<ProxyPair>{{a, b}}));
-    sap.remove(c);
-    sap.update();
-    EXPECT_EQ(sap.removedPairs(), (std::vector<ProxyPair>{{a, c}, {b, c}, {c, e}}));
-    EXPECT_TRUE(sap.isConsistent());
 }
 
 TEST(SweepAndPrune, BruteForceRefusesMismatchedFilters) {
