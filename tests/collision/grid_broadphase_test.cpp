@@ -28,9 +28,10 @@ TEST(GridBroadphase, FarAwayBoxesShareClampedCells) {
 }
 
 TEST(GridBroadphase, RefusesBadCells) {
-    EXPECT_THROW(GridBroadphase(0.0), InvalidArgument);
-    EXPECT_THROW(GridBroadphase(std::numeric_limits<Real>::infinity()), InvalidArgument);
-    EXPECT_THROW(GridBroadphase(1.0, 0), InvalidArgument);
+    // Braces: with parentheses Clang reads the second as the declaration of a variable.
+    EXPECT_THROW(GridBroadphase{0.0}, InvalidArgument);
+    EXPECT_THROW(GridBroadphase{std::numeric_limits<Real>::infinity()}, InvalidArgument);
+    EXPECT_THROW((GridBroadphase{1.0, 0}), InvalidArgument);
 }
 
 }  // namespace
