@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "testkit/scenes.h"
 #include "tumble/lumped.h"
 #include "tumble/tumble.h"
 
@@ -45,19 +46,6 @@ double residentBytes() {
 // pages a fragmented heap keeps resident.
 double heapInUseBytes() {
     return static_cast<double>(mallinfo2().uordblks);
-}
-
-Shape shapeFor(int k) {
-    switch (k % 4) {
-        case 0:
-            return Sphere{0.15};
-        case 1:
-            return Box{Vec3(0.15, 0.12, 0.1)};
-        case 2:
-            return Capsule{0.1, 0.1};
-        default:
-            return Cylinder{0.14, 0.1};
-    }
 }
 
 }  // namespace
@@ -116,24 +104,16 @@ int main(int argc, char** argv) {
 
     const Real h = 1.0 / 60.0;
     World world(WorldDef{.timeStep = h});
-    // Container: a square floor of floorPerBody per body, at least 4 m wide.
-    const Real half = std::max<Real>(2, 0.5 * std::sqrt(floorPerBody * bodies));
-    BodyDef fixed{.type = BodyType::Static};
-    const BodyId container = world.createBody(fixed);
-    world.createShape(container, ShapeDef{.geometry = HalfSpace{}});
-    for (int side = 0; side < 4; ++side) {
-        const Real sign = side % 2 == 0 ? 1 : -1;
-        const bool alongX = side < 2;
-        ShapeDef wall;
-        wall.geometry = Box{alongX ? Vec3(0.1, half, 3) : Vec3(half, 0.1, 3)};
-        wall.localPose.position =
-            alongX ? Vec3(sign * (half + 0.1), 0, 3) : Vec3(0, sign * (half + 0.1), 3);
-        world.createShape(container, wall);
-    }
-
-    // Waves of one layer at a time, 0.4 m apart, every half second until all have fallen in.
-    const int perSide = std::max(1, static_cast<int>((2 * half - 0.4) / 0.4));
-    const int perWave = perSide * perSide;
+    // Container: a square floor of floorPerBody per body, at least 4 m wide. Waves of one layer
+    // at a time, 0.4 m apart, every half second until all have fallen in.
+    const testkit::Rain rain{.half = std::max<Real>(2, 0.5 * std::sqrt(floorPerBody * bodies)),
+                             .material = Material{.friction = 0.5,
+                                                  .density = 700,
+                                                  .spinningFriction = spinningFriction,
+                                                  .rollingFriction = rollingFriction}};
+    const Real half = rain.half;
+    rain.addContainer(world);
+    const int perWave = rain.perWave();
     const long steps = static_cast<long>(minutes * 60 / h);
     const long stepsPerSecond = static_cast<long>(1 / h);
     int created = 0;
@@ -159,34 +139,12 @@ int main(int argc, char** argv) {
     const auto start = std::chrono::steady_clock::now();
     for (long i = 0; i < steps; ++i) {
         if (i % (stepsPerSecond / 2) == 0 && created < bodies) {
-            for (int k = 0; k < perWave && created < bodies; ++k, ++created) {
-                BodyDef def;
-                def.position =
-                    Vec3(-half + 0.4 + 0.4 * (k % perSide), -half + 0.4 + 0.4 * (k / perSide), 7);
-                def.orientation =
-                    Quat(Eigen::AngleAxis<Real>(0.6 * created, Vec3(1, 2, 3).normalized()));
-                def.linearVelocity = Vec3(0, 0, -2);
-                world.createShape(
-                    world.createBody(def),
-                    ShapeDef{.geometry = shapeFor(created),
-                             .material = Material{.friction = 0.5,
-                                                  .density = 700,
-                                                  .spinningFriction = spinningFriction,
-                                                  .rollingFriction = rollingFriction}});
-            }
+            for (int k = 0; k < perWave && created < bodies; ++k, ++created)
+                rain.addBody(world, created);
         }
         if (!netDropped && created == bodies && i % stepsPerSecond == 0) {
-            NetDef net;
-            net.rows = netSize;
-            net.columns = netSize;
-            net.meshSize = std::min<Real>(0.2, 2 * half / netSize);
-            net.center = Vec3(0, 0, 8);
-            net.node.mass = 0.02;
-            net.node.radius = 0.03;
-            net.node.collide = true;
-            net.cornerMass = 0.5;
-            net.thread.axialRigidity = 2000;
-            net.thread.damping = 0.5;
+            const NetDef net = testkit::captureNet(netSize, std::min<Real>(0.2, 2 * half / netSize),
+                                                   Vec3(0, 0, 8));
             const Lumped made = createNet(world, net);
             for (const BodyId node : made.nodes)
                 world.setDrag(node, Drag{.linear = netDamping * world.massProperties(node).mass});

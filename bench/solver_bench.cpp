@@ -1,11 +1,12 @@
 // The constraint solver: whole steps of the stack and pyramid scenes the validation cases check
-// (same builders, validation/cases/scenes.h), and the PGS sweep alone, per row and iteration.
+// (same builders: the scene kit, testkit/), and the PGS sweep alone, per row and iteration.
 
 #include <benchmark/benchmark.h>
 
 #include <vector>
 
 #include "scenes.h"
+#include "testkit/solver_scenes.h"
 #include "tumble/solver/constraint_solver.h"
 #include "tumble/tumble.h"
 
@@ -64,19 +65,7 @@ void BM_PgsRowIteration(benchmark::State& state) {
     for (int k = 0; k < boxes; ++k) {
         bodies[k + 1].inverseMass = 0.5;
         bodies[k + 1].inverseInertia = Mat3::Identity() * 3;
-        ContactConstraint& c = constraints[k];
-        c.bodyA = 0;
-        c.bodyB = static_cast<std::uint32_t>(k + 1);
-        c.friction = kFriction;
-        c.pointCount = 4;
-        int i = 0;
-        for (Real x : {-0.5, 0.5}) {
-            for (Real y : {-0.5, 0.5}) {
-                c.points[i].rA = Vec3(x, y, 0);
-                c.points[i].rB = Vec3(x, y, -0.5);
-                ++i;
-            }
-        }
+        constraints[k] = testkit::cubeOnGround(static_cast<std::uint32_t>(k + 1), kFriction);
     }
     SolverSettings settings;
     settings.iterations = iterations;

@@ -12,7 +12,8 @@ packages=(
   libcli11-dev                           # command lines
   libgtest-dev libgmock-dev              # unit tests
   libbenchmark-dev                       # micro-benchmarks
-  clang                                  # libFuzzer for scripts/fuzz.sh
+  clang                                  # libFuzzer for scripts/fuzz.sh; the `clang` preset
+  clang-format                           # scripts/check-format.sh (Debian 12: version 14)
   libbullet-dev libode-dev libbox2d-dev  # peer engines for tumble-bench (optional at configure)
   python3-matplotlib                     # PNG plots of the sweeps and reports (/usr/bin/python3)
 )

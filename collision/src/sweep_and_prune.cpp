@@ -81,11 +81,13 @@ void checkBox(const Aabb& box, const char* where) {
     }
 }
 
-// Overlap (touching counts) on axes j and k. Evaluated without short-circuits: in the bubbling
-// loop a single, mostly-false branch is cheaper than a chain of unpredictable ones.
+// Overlap (touching counts) on axes j and k. Evaluated without short-circuits (a bitwise and of
+// the truths as integers): in the bubbling loop a single, mostly-false branch is cheaper than a
+// chain of unpredictable ones.
 bool overlapsOn(const Aabb& a, const Aabb& b, int j, int k) {
-    return (a.lower[j] <= b.upper[j]) & (b.lower[j] <= a.upper[j]) & (a.lower[k] <= b.upper[k]) &
-           (b.lower[k] <= a.upper[k]);
+    const unsigned onJ = unsigned{a.lower[j] <= b.upper[j]} & unsigned{b.lower[j] <= a.upper[j]};
+    const unsigned onK = unsigned{a.lower[k] <= b.upper[k]} & unsigned{b.lower[k] <= a.upper[k]};
+    return (onJ & onK) != 0;
 }
 
 Real extentAlong(const Aabb& box, int axis) {
@@ -331,9 +333,9 @@ void SweepAndPrune::moveEndpoint(int axis, std::uint32_t index, Real value) {
     const int k = (axis + 2) % 3;
     auto pass = [&](const Endpoint& other, std::uint32_t otherIndex) {
         Proxy& otherProxy = proxies_[other.proxy()];
-        const bool changes = (other.isUpper() != moving.isUpper()) &
-                             (other.proxy() != moving.proxy()) &
-                             overlapsOn(box, otherProxy.box, j, k);
+        const bool changes = (unsigned{other.isUpper() != moving.isUpper()} &
+                              unsigned{other.proxy() != moving.proxy()} &
+                              unsigned{overlapsOn(box, otherProxy.box, j, k)}) != 0;
         if (changes) {
             candidates_.push_back(makePair(other.proxy(), moving.proxy()));
         }

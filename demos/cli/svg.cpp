@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdarg>
 #include <cstdio>
 #include <limits>
 #include <numbers>
@@ -57,6 +58,17 @@ std::vector<Point> hull(std::vector<Point> p) {
 }
 
 /// A distinct colour per body (golden-angle hues); static grey, kinematic green, asleep pale.
+// Appends printf-formatted text (up to 511 characters) to `out`; the attribute has the compiler
+// check each call's literal format against its arguments.
+[[gnu::format(printf, 2, 3)]] void appendf(std::string& out, const char* fmt, ...) {
+    char buf[512];
+    std::va_list args;
+    va_start(args, fmt);
+    std::vsnprintf(buf, sizeof buf, fmt, args);
+    va_end(args);
+    out += buf;
+}
+
 std::string colourOf(BodyId body, BodyType type, bool awake) {
     if (type == BodyType::Static)
         return "#b4b4b4";
@@ -319,28 +331,24 @@ std::string SvgPicture::render() const {
     const double height = header + caption + ph + margin + 20;
     auto px = [&](const Point& p) { return Point{(p[0] - u0) * scale, (v1 - p[1]) * scale}; };
     std::string svg;
-    char buf[512];
-    auto put = [&](const char* fmt, auto... args) {
-        std::snprintf(buf, sizeof buf, fmt, args...);
-        svg += buf;
-    };
     auto polygon = [&](const std::vector<Point>& points, const std::string& fill,
                        const char* stroke) {
         svg += "<polygon points=\"";
         for (const Point& p : points) {
             const Point q = px(p);
-            put("%.1f,%.1f ", q[0], q[1]);
+            appendf(svg, "%.1f,%.1f ", q[0], q[1]);
         }
-        put("\" fill=\"%s\" stroke=\"%s\" stroke-width=\"0.8\"/>\n", fill.c_str(), stroke);
+        appendf(svg, "\" fill=\"%s\" stroke=\"%s\" stroke-width=\"0.8\"/>\n", fill.c_str(), stroke);
     };
-    put("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
-        "font-family=\"sans-serif\" font-size=\"12\">\n",
-        width, height);
-    put("<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n");
+    appendf(svg,
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
+            "font-family=\"sans-serif\" font-size=\"12\">\n",
+            width, height);
+    appendf(svg, "<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n");
     std::string title;
     for (const char c : title_)  // XML-escape the scene's own text
         title += c == '<' ? "&lt;" : c == '>' ? "&gt;" : c == '&' ? "&amp;" : std::string(1, c);
-    put("<text x=\"%.0f\" y=\"18\" font-size=\"14\">%s</text>\n", margin, title.c_str());
+    appendf(svg, "<text x=\"%.0f\" y=\"18\" font-size=\"14\">%s</text>\n", margin, title.c_str());
     const char* axes = view_ == View::Side    ? "side view: x right, z up"
                        : view_ == View::Front ? "front view: y right, z up"
                                               : "top view: x right, y up";
@@ -349,19 +357,22 @@ std::string SvgPicture::render() const {
         bar *= 5;
     else if (bar * 2 <= (u1 - u0) / 4)
         bar *= 2;
-    put("<text x=\"%.0f\" y=\"36\" fill=\"#555\">%s; scale bar %g m; red: contacts; blue: "
-        "springs and threads (dashed: slack); orange: joints; dark lines: traced centres of "
-        "mass</text>\n",
-        margin, axes, bar);
+    appendf(svg,
+            "<text x=\"%.0f\" y=\"36\" fill=\"#555\">%s; scale bar %g m; red: contacts; blue: "
+            "springs and threads (dashed: slack); orange: joints; dark lines: traced centres of "
+            "mass</text>\n",
+            margin, axes, bar);
     for (std::size_t k = 0; k < panels_.size(); ++k) {
         const Panel& panel = panels_[k];
         const double x0 = margin + static_cast<double>(k) * (pw + margin), y0 = header + caption;
-        put("<text x=\"%.1f\" y=\"%.1f\">t = %.3f s</text>\n", x0, y0 - 6, panel.time);
-        put("<defs><clipPath id=\"p%zu\"><rect width=\"%.1f\" height=\"%.1f\"/></clipPath>"
-            "</defs>\n",
-            k, pw, ph);
-        put("<g transform=\"translate(%.1f,%.1f)\" clip-path=\"url(#p%zu)\">\n", x0, y0, k);
-        put("<rect width=\"%.1f\" height=\"%.1f\" fill=\"#f7f9fc\"/>\n", pw, ph);
+        appendf(svg, "<text x=\"%.1f\" y=\"%.1f\">t = %.3f s</text>\n", x0, y0 - 6, panel.time);
+        appendf(svg,
+                "<defs><clipPath id=\"p%zu\"><rect width=\"%.1f\" height=\"%.1f\"/></clipPath>"
+                "</defs>\n",
+                k, pw, ph);
+        appendf(svg, "<g transform=\"translate(%.1f,%.1f)\" clip-path=\"url(#p%zu)\">\n", x0, y0,
+                k);
+        appendf(svg, "<rect width=\"%.1f\" height=\"%.1f\" fill=\"#f7f9fc\"/>\n", pw, ph);
         for (const Item& item : panel.items) {
             if (item.kind == Item::Kind::Plane) {
                 polygon(clipHalfPlane(item.normal, item.offset, u0 - 1, v0 - 1, u1 + 1, v1 + 1),
@@ -370,49 +381,57 @@ std::string SvgPicture::render() const {
                 polygon(item.points, item.fill, "#333");
             } else if (item.kind == Item::Kind::Circle) {
                 const Point c = px(item.points[0]), r = px(item.points[1]);
-                put("<circle cx=\"%.1f\" cy=\"%.1f\" r=\"%.1f\" fill=\"%s\" stroke=\"#333\" "
-                    "stroke-width=\"0.8\"/>\n",
-                    c[0], c[1], item.offset * scale, item.fill.c_str());
-                put("<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#333\" "
-                    "stroke-width=\"0.8\"/>\n",
-                    c[0], c[1], r[0], r[1]);
+                appendf(svg,
+                        "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"%.1f\" fill=\"%s\" stroke=\"#333\" "
+                        "stroke-width=\"0.8\"/>\n",
+                        c[0], c[1], item.offset * scale, item.fill.c_str());
+                appendf(svg,
+                        "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#333\" "
+                        "stroke-width=\"0.8\"/>\n",
+                        c[0], c[1], r[0], r[1]);
             } else if (item.kind == Item::Kind::Line) {
                 const Point a = px(item.points[0]), b = px(item.points[1]);
-                put("<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" "
-                    "stroke-width=\"0.8\"%s/>\n",
-                    a[0], a[1], b[0], b[1], item.fill.c_str(),
-                    item.dashed ? " stroke-dasharray=\"2,2\"" : "");
+                appendf(svg,
+                        "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" "
+                        "stroke-width=\"0.8\"%s/>\n",
+                        a[0], a[1], b[0], b[1], item.fill.c_str(),
+                        item.dashed ? " stroke-dasharray=\"2,2\"" : "");
             } else if (item.kind == Item::Kind::Joint) {
                 drawJointMark(svg, item, px(item.points[0]), px(item.points[1]));
             } else if (item.kind == Item::Kind::Contact) {
                 const Point p = px(item.points[0]);
                 const double n = std::hypot(item.normal[0], item.normal[1]);
-                put("<circle cx=\"%.1f\" cy=\"%.1f\" r=\"1.2\" fill=\"#d22\"/>\n", p[0], p[1]);
+                appendf(svg, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"1.2\" fill=\"#d22\"/>\n", p[0],
+                        p[1]);
                 if (n > 1e-3)
-                    put("<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#d22\" "
-                        "stroke-width=\"0.8\"/>\n",
-                        p[0], p[1], p[0] + 6 * item.normal[0] / n, p[1] - 6 * item.normal[1] / n);
+                    appendf(svg,
+                            "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#d22\" "
+                            "stroke-width=\"0.8\"/>\n",
+                            p[0], p[1], p[0] + 6 * item.normal[0] / n,
+                            p[1] - 6 * item.normal[1] / n);
             }
         }
         for (std::size_t t = 0; t < traces_.size(); ++t) {
             svg += "<polyline fill=\"none\" stroke-width=\"1.2\" stroke=\"";
-            put("hsl(%.0f,80%%,30%%)\" points=\"",
-                std::fmod(static_cast<double>(t) * 97.0 + 200, 360.0));
+            appendf(svg, "hsl(%.0f,80%%,30%%)\" points=\"",
+                    std::fmod(static_cast<double>(t) * 97.0 + 200, 360.0));
             for (const TracePoint& p : traces_[t].second) {
                 if (p.time > panel.time + 1e-9)
                     break;
                 const Point q = px(p.point);
-                put("%.1f,%.1f ", q[0], q[1]);
+                appendf(svg, "%.1f,%.1f ", q[0], q[1]);
             }
             svg += "\"/>\n";
         }
         if (k == 0)
-            put("<line x1=\"8\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"black\" "
-                "stroke-width=\"2\"/>\n",
-                ph - 8, 8 + bar * scale, ph - 8);
-        put("</g>\n<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"none\" "
-            "stroke=\"#888\"/>\n",
-            x0, y0, pw, ph);
+            appendf(svg,
+                    "<line x1=\"8\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"black\" "
+                    "stroke-width=\"2\"/>\n",
+                    ph - 8, 8 + bar * scale, ph - 8);
+        appendf(svg,
+                "</g>\n<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"none\" "
+                "stroke=\"#888\"/>\n",
+                x0, y0, pw, ph);
     }
     svg += "</svg>\n";
     return svg;

@@ -31,6 +31,9 @@ template <typename... Fs>
 struct Overloaded : Fs... {
     using Fs::operator()...;
 };
+// C++20 deduces this for aggregates; Clang 14 does not yet.
+template <typename... Fs>
+Overloaded(Fs...) -> Overloaded<Fs...>;
 
 Vec3 randomDirection(std::mt19937& rng) {
     std::normal_distribution<Real> normal;

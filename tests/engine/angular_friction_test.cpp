@@ -11,7 +11,7 @@
 #include <numbers>
 
 #include "refusal.h"
-#include "support/same_ids.h"
+#include "testkit/same_ids.h"
 #include "tumble/checkpoint.h"
 #include "tumble/world.h"
 

@@ -16,7 +16,8 @@
 
 #include "checkpoint_io.h"
 #include "refusal.h"
-#include "support/same_ids.h"
+#include "testkit/same_ids.h"
+#include "testkit/scenes.h"
 #include "tumble/checkpoint.h"
 #include "tumble/lumped.h"
 #include "tumble/world.h"
@@ -180,16 +181,11 @@ Scene netScene() {
     Scene s;
     const BodyId ground = addBody(s, Vec3::Zero(), BodyType::Static);
     s.world.createShape(ground, ShapeDef{.geometry = HalfSpace{}});
-    NetDef net;
-    net.rows = 12;
-    net.columns = 12;
-    net.meshSize = 0.1;
-    net.center = Vec3(0, 0, 1.5);
+    // The soak's net, lighter and finer, thrown down.
+    NetDef net = testkit::captureNet(12, 0.1, Vec3(0, 0, 1.5));
     net.node.mass = 0.01;
     net.node.radius = 0.01;
-    net.node.collide = true;
     net.cornerMass = 0.2;
-    net.thread.axialRigidity = 2e3;
     net.thread.damping = 0.05;
     net.velocity = Vec3(0, 0, -1);
     net.spreadSpeed = 1;
@@ -211,11 +207,6 @@ Scene netScene() {
     return s;
 }
 
-void run(World& world, int steps) {
-    for (int i = 0; i < steps; ++i)
-        ASSERT_TRUE(world.step().ok()) << "step " << i;
-}
-
 int sleepingCount(const World& world, const std::vector<BodyId>& bodies) {
     int n = 0;
     for (const BodyId b : bodies)
@@ -233,7 +224,7 @@ int touchingAwakeContacts(const World& world) {
 /// Runs `warmup` steps, checkpoints, restores into a default world, and steps both for `further`
 /// steps comparing every body's state bitwise at every step, and the whole checkpoint at the end.
 void expectBitwiseResume(Scene& original, int warmup, int further) {
-    run(original.world, warmup);
+    ASSERT_TRUE(testkit::simulate(original.world, warmup));
     const std::vector<std::uint8_t> saved = checkpointBytes(original.world);
     World resumed;  // a different (empty) world: everything must come from the checkpoint
     restoreCheckpoint(resumed, saved);
@@ -255,7 +246,8 @@ void expectBitwiseResume(Scene& original, int warmup, int further) {
 
 TEST(Checkpoint, PileWithSleepingBodiesAndActiveContactsResumesBitwise) {
     Scene s = pileScene();
-    run(s.world, 100);  // the left stack is asleep, the pyramid still settling
+    // The left stack is asleep, the pyramid still settling.
+    ASSERT_TRUE(testkit::simulate(s.world, 100));
     EXPECT_GE(sleepingCount(s.world, s.bodies), 4);
     EXPECT_GE(touchingAwakeContacts(s.world), 5);
     const BodyId late = s.bodies.back();
@@ -269,7 +261,7 @@ TEST(Checkpoint, PileWithSleepingBodiesAndActiveContactsResumesBitwise) {
 // the next step completes; a checkpoint taken right after the destruction carries them.
 TEST(Checkpoint, PendingRemovalsAndFreeSlotsResumeBitwise) {
     Scene s = pileScene();
-    run(s.world, 60);
+    ASSERT_TRUE(testkit::simulate(s.world, 60));
     const std::size_t top = 4 + 1 + 15;  // ground, the left stack, the pyramid's last box
     const BodyId removed = s.bodies[top];
     s.world.destroyBody(removed);
@@ -297,7 +289,7 @@ TEST(Checkpoint, JointsWithMotorLimitsControllerAndBreakingResumeBitwise) {
 // is saved once per step; a resumed world must take the substep count from the checkpoint.
 TEST(Checkpoint, PileAndJointsWithTwoSubstepsResumeBitwise) {
     Scene pile = pileScene(WorldDef{.substeps = 2});
-    run(pile.world, 100);
+    ASSERT_TRUE(testkit::simulate(pile.world, 100));
     EXPECT_GE(sleepingCount(pile.world, pile.bodies), 4);
     expectBitwiseResume(pile, 0, 150);
     Scene joints = jointScene({}, 2);
@@ -379,7 +371,7 @@ TEST(Checkpoint, EverySettingRoundTrips) {
 
 TEST(Checkpoint, NetCatchingABallResumesBitwise) {
     Scene s = netScene();
-    run(s.world, 12);  // the ball reaches the net during the resumed run
+    ASSERT_TRUE(testkit::simulate(s.world, 12));  // the ball reaches the net during the resumed run
     expectBitwiseResume(s, 0, 90);
     // The threads' active set changed during the resumed run: some went slack, some taut.
     int slack = 0;
@@ -391,7 +383,7 @@ TEST(Checkpoint, NetCatchingABallResumesBitwise) {
 
 TEST(Checkpoint, FileRoundTripReplacesTheTemporary) {
     Scene s = pileScene();
-    run(s.world, 30);
+    ASSERT_TRUE(testkit::simulate(s.world, 30));
     const std::filesystem::path file =
         std::filesystem::temp_directory_path() / "tumble_checkpoint_test.ckpt";
     std::filesystem::path tmp = file;
@@ -399,7 +391,7 @@ TEST(Checkpoint, FileRoundTripReplacesTheTemporary) {
     saveCheckpoint(s.world, file);
     EXPECT_TRUE(std::filesystem::exists(file));
     EXPECT_FALSE(std::filesystem::exists(tmp));
-    run(s.world, 10);
+    ASSERT_TRUE(testkit::simulate(s.world, 10));
     saveCheckpoint(s.world, file);  // over the previous one
     World loaded;
     loadCheckpoint(loaded, file);
@@ -425,10 +417,10 @@ class CheckpointRefusal : public ::testing::Test {
 protected:
     void SetUp() override {
         Scene s = netScene();
-        run(s.world, 5);
+        ASSERT_TRUE(testkit::simulate(s.world, 5));
         good = checkpointBytes(s.world);
         Scene other = jointScene();
-        run(other.world, 3);
+        ASSERT_TRUE(testkit::simulate(other.world, 3));
         target = std::move(other.world);
         before = checkpointBytes(target);
     }

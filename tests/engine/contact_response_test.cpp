@@ -5,18 +5,13 @@
 #include <cmath>
 
 #include "refusal.h"
+#include "testkit/scenes.h"
 #include "tumble/world.h"
 
 namespace tumble {
 namespace {
 
-BodyId addGround(World& world, Real friction = 0.5) {
-    const BodyId ground = world.createBody(BodyDef{.type = BodyType::Static});
-    ShapeDef def{.geometry = HalfSpace{}};
-    def.material.friction = friction;
-    world.createShape(ground, def);
-    return ground;
-}
+using testkit::addGround;
 
 TEST(ContactResponse, DroppedBoxComesToRestOnTheGround) {
     World world;

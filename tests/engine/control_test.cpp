@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "refusal.h"
+#include "testkit/scenes.h"
 #include "tumble/world.h"
 
 namespace tumble {
@@ -19,13 +20,7 @@ using test::refusal;
 constexpr Real kGravity = 9.81;
 constexpr Real kPi = std::numbers::pi_v<Real>;
 
-WorldDef quietWorld(Real h) {
-    WorldDef def;
-    def.gravity = Vec3(0, 0, -kGravity);
-    def.timeStep = h;
-    def.enableSleep = false;
-    return def;
-}
+using testkit::quietWorld;
 
 // A body with inertia `inertia` about z, on a hinge about z through its centre of mass (gravity
 // along the axis: no torque), joined to the world.

@@ -13,15 +13,15 @@
 #include <utility>
 #include <vector>
 
-#include "support/state_hash.h"
+#include "testkit/state_hash.h"
 #include "tumble/scene/scene.h"
 
 namespace tumble {
 namespace {
 
-/// Every body of the scene, in scene order (tests/support/state_hash.h).
+/// Every body of the scene, in scene order (testkit/state_hash.h).
 std::uint64_t stateHash(const cli::BuiltScene& built) {
-    return test::stateHash(built.world, built.bodies);
+    return testkit::stateHash(built.world, built.bodies);
 }
 
 struct Trajectory {

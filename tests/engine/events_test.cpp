@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "refusal.h"
+#include "testkit/scenes.h"
 #include "tumble/world.h"
 
 namespace tumble {
@@ -18,19 +19,9 @@ using test::refusal;
 
 constexpr Real kGravity = 9.81;
 
-BodyId addGround(World& world) {
-    const BodyId ground = world.createBody(BodyDef{.type = BodyType::Static});
-    world.createShape(ground, ShapeDef{.geometry = HalfSpace{}});
-    return ground;
-}
-
-BodyId addBox(World& world, const Vec3& position) {
-    BodyDef def;
-    def.position = position;
-    const BodyId box = world.createBody(def);
-    world.createShape(box, ShapeDef{.geometry = Box{}});  // unit cube
-    return box;
-}
+using testkit::addBox;  // a unit cube
+using testkit::addGround;
+using testkit::quietWorld;
 
 // Everything the steps reported, gathered step by step.
 struct Tally {
@@ -60,14 +51,6 @@ Tally run(World& world, int steps) {
     return tally;
 }
 
-WorldDef awakeWorld(Real h) {
-    WorldDef def;
-    def.gravity = Vec3(0, 0, -kGravity);
-    def.timeStep = h;
-    def.enableSleep = false;
-    return def;
-}
-
 // A box dropped 1 m flat onto the ground: one begin, one impact, no end. Without restitution
 // the contact takes the box's momentum plus its weight over the two steps the speculative
 // contact stops it in (see ImpactEvent): J = m (v + 2 g h), v the approach speed at the start
@@ -82,7 +65,7 @@ WorldDef awakeWorld(Real h) {
 TEST(Events, DroppedBoxBeginsOnceAndImpactsOnceWithItsMomentum) {
     for (const Real h : {1.0 / 60.0, 1.0 / 240.0}) {
         SCOPED_TRACE(h);
-        World world(awakeWorld(h));
+        World world(quietWorld(h));
         const BodyId ground = addGround(world);
         const Real drop = 1;
         const BodyId box = addBox(world, Vec3(0, 0, 0.5 + drop));
@@ -114,7 +97,7 @@ TEST(Events, DroppedBoxBeginsOnceAndImpactsOnceWithItsMomentum) {
 // down and begins again, with a second impact.
 TEST(Events, LiftedBoxEndsOnce) {
     const Real h = 1.0 / 60.0;
-    World world(awakeWorld(h));
+    World world(quietWorld(h));
     addGround(world);
     const BodyId box = addBox(world, Vec3(0, 0, 0.5));  // resting
     run(world, 30);
@@ -131,7 +114,7 @@ TEST(Events, LiftedBoxEndsOnce) {
 
 // A teleport away ends the contact once (the pair separates in the broadphase).
 TEST(Events, TeleportedBoxEndsOnce) {
-    World world(awakeWorld(1.0 / 60.0));
+    World world(quietWorld(1.0 / 60.0));
     addGround(world);
     const BodyId box = addBox(world, Vec3(0, 0, 0.5));
     run(world, 10);
@@ -145,7 +128,7 @@ TEST(Events, TeleportedBoxEndsOnce) {
 // Destroying a touching box between steps ends its contact; the event comes with the next
 // step and names the destroyed ids.
 TEST(Events, DestroyedShapeEndsItsContactAtTheNextStep) {
-    World world(awakeWorld(1.0 / 60.0));
+    World world(quietWorld(1.0 / 60.0));
     addGround(world);
     const BodyId box = addBox(world, Vec3(0, 0, 0.5));
     run(world, 10);
@@ -160,7 +143,7 @@ TEST(Events, DestroyedShapeEndsItsContactAtTheNextStep) {
 
 // Events are the last step's only: a quiet step publishes empty arrays.
 TEST(Events, ClearedByTheNextStep) {
-    World world(awakeWorld(1.0 / 60.0));
+    World world(quietWorld(1.0 / 60.0));
     addGround(world);
     addBox(world, Vec3(0, 0, 0.5));
     ASSERT_TRUE(world.step().ok());
@@ -173,14 +156,14 @@ TEST(Events, ClearedByTheNextStep) {
 
 // Resting and sliding contacts make no impacts; an infinite threshold turns impacts off.
 TEST(Events, NoImpactsFromRestingOrSlidingOrWhenDisabled) {
-    World world(awakeWorld(1.0 / 60.0));
+    World world(quietWorld(1.0 / 60.0));
     addGround(world);
     const BodyId box = addBox(world, Vec3(0, 0, 0.5));
     world.setLinearVelocity(box, Vec3(3, 0, 0));
     const Tally tally = run(world, 120);
     EXPECT_TRUE(tally.impacts.empty());
 
-    WorldDef quiet = awakeWorld(1.0 / 60.0);
+    WorldDef quiet = quietWorld(1.0 / 60.0);
     quiet.impactSpeedThreshold = std::numeric_limits<Real>::infinity();
     World silent(quiet);
     addGround(silent);
@@ -197,7 +180,7 @@ TEST(Events, NoImpactsFromRestingOrSlidingOrWhenDisabled) {
 // A breakable joint breaks once, reported in the step it broke with the reaction that broke
 // it, and never again.
 TEST(Events, JointBreakReportedOnce) {
-    World world(awakeWorld(1.0 / 60.0));
+    World world(quietWorld(1.0 / 60.0));
     BodyDef def;
     def.position = Vec3(0, 0, -1);
     def.mass.mass = 1;

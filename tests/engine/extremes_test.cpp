@@ -10,32 +10,20 @@
 #include <string>
 #include <vector>
 
+#include "testkit/scenes.h"
 #include "tumble/world.h"
 
 namespace tumble {
 namespace {
 
-/// Sleep off: a sleeping body would hide any jitter.
-WorldDef awakeWorld() {
-    WorldDef def;
-    def.enableSleep = false;
-    return def;
-}
-
-BodyId addGround(World& world) {
-    const BodyId ground = world.createBody(BodyDef{.type = BodyType::Static});
-    world.createShape(ground, ShapeDef{.geometry = HalfSpace{}});
-    return ground;
-}
+using testkit::addGround;
+using testkit::quietWorld;  // sleep off: a sleeping body would hide any jitter
 
 BodyId addBox(World& world, const Vec3& position, const Vec3& halfExtents, Real density,
               BodyType type = BodyType::Dynamic, const Quat& orientation = Quat::Identity()) {
-    const BodyId body =
-        world.createBody(BodyDef{.type = type, .position = position, .orientation = orientation});
-    ShapeDef shape{.geometry = Box{halfExtents}};
-    shape.material.density = density;
-    world.createShape(body, shape);
-    return body;
+    return testkit::addBox(world,
+                           BodyDef{.type = type, .position = position, .orientation = orientation},
+                           halfExtents, Material{.density = density});
 }
 
 /// What a box did over the last second of a 3 s run, relative to `origin`.
@@ -68,7 +56,7 @@ Rest watch(World& world, BodyId box, const Vec3& origin) {
 /// A 1 m cube (1000 kg) dropped from 1 mm onto a 4 m x 4 m static ground box whose top face
 /// centre is at `origin`.
 Rest cubeOnGroundBox(const Vec3& origin) {
-    World world(awakeWorld());
+    World world(quietWorld());
     addBox(world, origin - Vec3(0, 0, 0.5), Vec3(2, 2, 0.5), 1000, BodyType::Static);
     const BodyId box = addBox(world, origin + Vec3(0, 0, 0.501), Vec3::Constant(0.5), 1000);
     return watch(world, box, origin);
@@ -92,7 +80,7 @@ TEST(Extremes, CubeRestsOnGroundBoxFarFromTheOrigin) {
 /// A 1 m cube sliding at (2, 0.5) m/s over a 10 m x 10 m ground box (friction 0.5 on both)
 /// centred at `origin`; where it stops after 2 s, relative to its start.
 Vec3 slide(const Vec3& origin) {
-    World world(awakeWorld());
+    World world(quietWorld());
     addBox(world, origin - Vec3(0, 0, 0.5), Vec3(5, 5, 0.5), 1000, BodyType::Static);
     const BodyId box = addBox(world, origin + Vec3(-2, 0, 0.5), Vec3::Constant(0.5), 1000);
     world.setLinearVelocity(box, Vec3(2, 0.5, 0));
@@ -117,7 +105,7 @@ TEST(Extremes, SlidingBoxFarFromTheOriginStopsWhereItDoesAtTheOrigin) {
 // Works with the default settings when it lands flat: the centre rests 5e-11 m below half the
 // side, jitter 1.6e-11 m.
 TEST(Extremes, MillimetreCubeRestsFlatOnTheGround) {
-    World world(awakeWorld());
+    World world(quietWorld());
     addGround(world);
     const BodyId box = addBox(world, Vec3(0, 0, 1.5e-3), Vec3::Constant(0.5e-3), 1000);
     const Rest r = watch(world, box, Vec3::Zero());
@@ -140,7 +128,7 @@ struct Landing {
 
 Landing dropTilted(Real s, bool scaleSettings) {
     const Real t = std::sqrt(s);
-    WorldDef def = awakeWorld();
+    WorldDef def = quietWorld();
     if (scaleSettings) {
         def.timeStep *= t;
         def.contactMargin *= s;
@@ -200,7 +188,7 @@ TEST(Extremes, MillimetreCubeWithDefaultSettingsStaysSunkOnACorner) {
 
 /// A heavy 1 m cube resting on a 1 kg one on the ground, `ratio` times heavier.
 struct Pile {
-    World world{awakeWorld()};
+    World world{quietWorld()};
     BodyId light, heavy;
     explicit Pile(Real ratio) {
         addGround(world);
@@ -261,7 +249,7 @@ TEST(Extremes, MillionTimesHeavierBoxDrivesTheLightOneIntoTheGround) {
 
 // A joint between a 1 kg and a 1000 kg body is warned of when it is made; a 10 kg one is not.
 TEST(Extremes, JointBetweenVeryDifferentMassesIsWarnedOf) {
-    World world(awakeWorld());
+    World world(quietWorld());
     const BodyId light = addBox(world, Vec3(0, 0, 1), Vec3::Constant(0.5), 1);
     const BodyId medium = addBox(world, Vec3(2, 0, 1), Vec3::Constant(0.5), 10);
     const BodyId heavy = addBox(world, Vec3(-2, 0, 1), Vec3::Constant(0.5), 1000);
@@ -288,7 +276,7 @@ TEST(Extremes, JointBetweenVeryDifferentMassesIsWarnedOf) {
 // of the step before, bitwise. The spring is warned of when it is made. Removing it lets the
 // world step on.
 TEST(Extremes, ExplicitSpringFarPastItsLimitIsNamedAndTheWorldKeepsItsLastState) {
-    WorldDef def = awakeWorld();
+    WorldDef def = quietWorld();
     def.gravity = Vec3::Zero();
     World world(def);
     const Real h = def.timeStep;

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "refusal.h"
-#include "support/same_ids.h"
+#include "testkit/same_ids.h"
 #include "tumble/checkpoint.h"
 #include "tumble/world.h"
 

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "support/state_hash.h"
+#include "testkit/state_hash.h"
 #include "tumble/scene/scene.h"
 
 namespace tumble {
@@ -63,11 +63,11 @@ std::map<std::string, std::pair<int, std::uint64_t>> readGolden() {
 /// Hash of the whole trajectory: each step's state hash folded into one.
 std::uint64_t trajectoryHash(const GoldenCase& c) {
     cli::BuiltScene built = cli::buildScene(cli::loadScene(c.scene, {}, cli::sceneDirectory()));
-    test::Hash trajectory;
-    trajectory.add(test::stateHash(built.world, built.bodies));
+    testkit::Hash trajectory;
+    trajectory.add(testkit::stateHash(built.world, built.bodies));
     for (int i = 0; i < c.steps; ++i) {
         EXPECT_TRUE(built.world.step().ok()) << c.scene << " step " << i;
-        trajectory.add(test::stateHash(built.world, built.bodies));
+        trajectory.add(testkit::stateHash(built.world, built.bodies));
     }
     return trajectory.value();
 }

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "refusal.h"
+#include "testkit/scenes.h"
 #include "tumble/world.h"
 
 namespace tumble {
@@ -20,13 +21,7 @@ using test::refusal;
 
 constexpr Real kGravity = 9.81;
 
-WorldDef quietWorld(Real h = 1.0 / 60.0) {
-    WorldDef def;
-    def.gravity = Vec3(0, 0, -kGravity);
-    def.timeStep = h;
-    def.enableSleep = false;
-    return def;
-}
+using testkit::quietWorld;
 
 BodyId addBody(World& world, const Vec3& position, Real mass = 1,
                BodyType type = BodyType::Dynamic) {
@@ -38,18 +33,13 @@ BodyId addBody(World& world, const Vec3& position, Real mass = 1,
     return world.createBody(def);
 }
 
-void run(World& world, int steps) {
-    for (int i = 0; i < steps; ++i)
-        ASSERT_TRUE(world.step().ok());
-}
-
 // A mass hanging at rest on a ball joint: the anchor holds and the reaction is the weight.
 TEST(Joints, BallJointCarriesTheWeight) {
     World world(quietWorld());
     const BodyId body = addBody(world, Vec3(0, 0, -1), 2);
     const JointId joint = world.createJoint(
         JointDef{.type = JointType::Ball, .bodyA = body, .bodyB = {}, .anchor = Vec3::Zero()});
-    run(world, 120);
+    ASSERT_TRUE(testkit::simulate(world, 120));
     EXPECT_NEAR(world.position(body).z(), -1, 1e-9);
     EXPECT_NEAR(world.position(body).x(), 0, 1e-9);
     // On B (the world) the joint pulls down with the weight A hangs on it.
@@ -62,7 +52,7 @@ TEST(Joints, FixedJointHoldsPoseOnALongLever) {
     const BodyId body = addBody(world, Vec3(1, 0, 0), 1);
     world.createJoint(
         JointDef{.type = JointType::Fixed, .bodyA = body, .bodyB = {}, .anchor = Vec3::Zero()});
-    run(world, 300);
+    ASSERT_TRUE(testkit::simulate(world, 300));
     EXPECT_LT((world.position(body) - Vec3(1, 0, 0)).norm(), 1e-6);
     EXPECT_LT(world.orientation(body).angularDistance(Quat::Identity()), 1e-6);
     EXPECT_LT(world.linearVelocity(body).norm(), 1e-6);
@@ -106,12 +96,13 @@ TEST(Joints, SliderFallsAlongItsAxisToTheLimit) {
                                                       .enableLimit = true,
                                                       .lower = -0.5,
                                                       .upper = 0.5});
-    run(world, 12);  // 0.2 s: free fall of g t^2 / 2 = 0.196 m, within the limit
+    // 0.2 s: free fall of g t^2 / 2 = 0.196 m, within the limit.
+    ASSERT_TRUE(testkit::simulate(world, 12));
     const Real t = 0.2;
     // Semi-implicit Euler: z_n = -g h^2 n (n + 1) / 2.
     EXPECT_NEAR(world.position(body).z(), -kGravity * (1.0 / 3600) * 12 * 13 / 2, 1e-9);
     EXPECT_NEAR(world.jointState(slider).speed, kGravity * t, 1e-9);  // A moves -z: B's +
-    run(world, 120);
+    ASSERT_TRUE(testkit::simulate(world, 120));
     EXPECT_NEAR(world.position(body).z(), -0.5, 2e-3);
     EXPECT_NEAR(world.position(body).x(), 0.2, 1e-9);
     EXPECT_NEAR(world.position(body).y(), 0, 1e-9);
@@ -136,10 +127,10 @@ TEST(Joints, RopeIsSlackWhenShortRodIsNot) {
                                .bodyB = {},
                                .anchor = Vec3(3, 0, -0.5),
                                .anchorB = Vec3(3, 0, 0.5)});
-    run(world, 6);  // 0.1 s: thrown up by 2 m/s, the rope goes slack
+    ASSERT_TRUE(testkit::simulate(world, 6));  // 0.1 s: thrown up by 2 m/s, the rope goes slack
     EXPECT_GT(world.position(roped).z(), -0.4);
     EXPECT_NEAR(world.position(rodded).z(), -0.5, 1e-9);
-    run(world, 120);
+    ASSERT_TRUE(testkit::simulate(world, 120));
     EXPECT_NEAR(world.position(roped).z(), -0.5, 1e-3);  // taut again, hanging
 }
 
@@ -154,7 +145,7 @@ TEST(Joints, BreaksAboveItsForceAndReleasesTheBody) {
     ASSERT_TRUE(world.step().ok());
     EXPECT_TRUE(world.jointState(joint).broken);
     const Real z = world.position(body).z();
-    run(world, 30);
+    ASSERT_TRUE(testkit::simulate(world, 30));
     EXPECT_LT(world.position(body).z(), z - 1);  // falling freely
     EXPECT_TRUE(world.isValid(joint));
 }
@@ -167,7 +158,7 @@ TEST(Joints, HoldsBelowItsBreakForce) {
                                                      .bodyB = {},
                                                      .anchor = Vec3::Zero(),
                                                      .breakForce = 12});
-    run(world, 60);
+    ASSERT_TRUE(testkit::simulate(world, 60));
     EXPECT_FALSE(world.jointState(joint).broken);
 }
 
@@ -184,11 +175,11 @@ TEST(Joints, ConnectedBodiesDoNotCollideUnlessAsked) {
     const JointId joint = world.createJoint(
         JointDef{.type = JointType::Ball, .bodyA = a, .bodyB = b, .anchor = Vec3(0.25, 0, 0)});
     world.createShape(b, ShapeDef{.geometry = Sphere{0.4}, .updateBodyMass = false});
-    run(world, 3);
+    ASSERT_TRUE(testkit::simulate(world, 3));
     EXPECT_TRUE(world.contacts().empty());
     EXPECT_LT((world.position(b) - world.position(a) - Vec3(0.5, 0, 0)).norm(), 1e-9);
     world.destroyJoint(joint);
-    run(world, 1);
+    ASSERT_TRUE(testkit::simulate(world, 1));
     EXPECT_FALSE(world.contacts().empty());
 
     World other(settings);
@@ -201,7 +192,7 @@ TEST(Joints, ConnectedBodiesDoNotCollideUnlessAsked) {
                                .bodyB = d,
                                .anchor = Vec3(0.25, 0, 0),
                                .collideConnected = true});
-    run(other, 1);
+    ASSERT_TRUE(testkit::simulate(other, 1));
     EXPECT_FALSE(other.contacts().empty());
 }
 
@@ -221,12 +212,12 @@ TEST(Joints, JointedBodiesShareAnIsland) {
                                .bodyB = b,
                                .anchor = Vec3(0, 0, 0.5),
                                .anchorB = Vec3(3, 0, 0.5)});
-    run(world, 120);
+    ASSERT_TRUE(testkit::simulate(world, 120));
     ASSERT_FALSE(world.isAwake(a));
     ASSERT_FALSE(world.isAwake(b));
     world.applyLinearImpulse(a, Vec3(0, 1, 0), world.centerOfMass(a));
     EXPECT_TRUE(world.isAwake(a));
-    run(world, 1);
+    ASSERT_TRUE(testkit::simulate(world, 1));
     EXPECT_TRUE(world.isAwake(b));
 }
 
@@ -239,7 +230,7 @@ TEST(Joints, DestroyingABodyDestroysItsJoints) {
     world.destroyBody(b);
     EXPECT_FALSE(world.isValid(joint));
     EXPECT_EQ(world.jointCount(), 0);
-    run(world, 2);
+    ASSERT_TRUE(testkit::simulate(world, 2));
 }
 
 TEST(Joints, BadDefinitionsAreRefusedByName) {

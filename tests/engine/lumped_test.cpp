@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "refusal.h"
+#include "testkit/scenes.h"
 #include "tumble/lumped.h"
 #include "tumble/world.h"
 
@@ -16,15 +17,10 @@ namespace {
 using test::contains;
 using test::refusal;
 
-WorldDef settings(Vec3 gravity = Vec3(0, 0, -9.81)) {
-    WorldDef def;
-    def.gravity = gravity;
-    def.enableSleep = false;
-    return def;
-}
+using testkit::quietWorld;
 
 TEST(Net, BuildsNodesThreadsAndCorners) {
-    World world(settings());
+    World world(quietWorld());
     NetDef def;
     def.rows = 4;
     def.columns = 3;
@@ -52,7 +48,7 @@ TEST(Net, BuildsNodesThreadsAndCorners) {
 // Thrown open: every node moves away from the centre in the net's plane at a speed in proportion
 // to its distance, the corners at spreadSpeed, on top of the common velocity.
 TEST(Net, ThrownOpenSpreadsFromTheCentre) {
-    World world(settings());
+    World world(quietWorld());
     NetDef def;
     def.rows = 5;
     def.columns = 5;
@@ -73,7 +69,7 @@ TEST(Net, ThrownOpenSpreadsFromTheCentre) {
 // (implicit and explicit alike), and the net's centre of mass falls at g.
 TEST(Net, DroppedFlatFallsLikeOneBody) {
     for (const SpringFormulation f : {SpringFormulation::Implicit, SpringFormulation::Explicit}) {
-        World world(settings());
+        World world(quietWorld());
         NetDef def;
         def.rows = 6;
         def.columns = 6;
@@ -130,7 +126,7 @@ TEST(Net, RestingAcrossGapsInAPileFallsAsleep) {
 // A string hanging from a point (with drag, so its swing dies out) comes to rest straight down
 // with its top thread carrying the weight of every node.
 TEST(String, HangsWithTheWeightOfItsNodes) {
-    World world(settings());
+    World world(quietWorld());
     StringDef def;
     def.start = Vec3(0, 0, 2);
     def.end = Vec3(0.5, 0, 2);  // starts horizontal
@@ -151,7 +147,7 @@ TEST(String, HangsWithTheWeightOfItsNodes) {
 }
 
 TEST(String, BetweenTwoFixedPointsUnderTension) {
-    World world(settings(Vec3::Zero()));
+    World world(testkit::weightlessWorld());
     StringDef def;
     def.start = Vec3(0, 0, 0);
     def.end = Vec3(1, 0, 0);
@@ -170,7 +166,7 @@ TEST(String, BetweenTwoFixedPointsUnderTension) {
 }
 
 TEST(Lumped, BadDefinitionsAreRefusedAndCreateNothing) {
-    World world(settings());
+    World world(quietWorld());
     auto netRefusal = [&](auto&& edit) {
         NetDef def;
         edit(def);

@@ -4,19 +4,14 @@
 
 #include <numbers>
 
+#include "testkit/scenes.h"
 #include "tumble/core/error.h"
 #include "tumble/world.h"
 
 namespace tumble {
 namespace {
 
-BodyId addGround(World& world) {
-    BodyDef def;
-    def.type = BodyType::Static;
-    const BodyId ground = world.createBody(def);
-    world.createShape(ground, ShapeDef{.geometry = HalfSpace{}});
-    return ground;
-}
+using testkit::addGround;
 
 TEST(Shapes, BodyMassComesFromItsShapes) {
     World world;

@@ -9,7 +9,8 @@
 #include <vector>
 
 #include "refusal.h"
-#include "support/same_ids.h"
+#include "testkit/same_ids.h"
+#include "testkit/scenes.h"
 #include "tumble/checkpoint.h"
 #include "tumble/world.h"
 
@@ -19,22 +20,10 @@ namespace {
 using test::contains;
 using test::refusal;
 
-BodyId addGround(World& world) {
-    const BodyId ground = world.createBody(BodyDef{.type = BodyType::Static});
-    ShapeDef def{.geometry = HalfSpace{}};
-    def.material.friction = 0.5;
-    world.createShape(ground, def);
-    return ground;
-}
-
-BodyId addBox(World& world, const Vec3& position, BodyDef def = {}) {
-    def.position = position;
-    const BodyId box = world.createBody(def);
-    ShapeDef shape{.geometry = Box{}};  // unit cube, 1 kg at the default density
-    shape.material.friction = 0.5;
-    world.createShape(box, shape);
-    return box;
-}
+// Friction 0.5 (the default material's) on the ground and the boxes; the boxes unit cubes of
+// 1,000 kg at the default density.
+using testkit::addBox;
+using testkit::addGround;
 
 // The sleep test (WorldDef::linearSleepVelocity): no point of the body, which reaches `extent`
 // from its centre of mass, moves faster than the linear threshold, and it turns slower than the
@@ -76,9 +65,10 @@ bool bitwiseEqual(const std::vector<Real>& a, const std::vector<Real>& b) {
 TEST(Sleep, DroppedBoxFallsAsleepOnlyAfterStayingStillForTimeToSleep) {
     World world;
     addGround(world);
-    BodyDef def;
-    def.orientation = Quat(Eigen::AngleAxis<Real>(0.3, Vec3(1, 1, 0).normalized()));
-    const BodyId box = addBox(world, Vec3(0, 0, 1.5), def);
+    const BodyId box = addBox(
+        world,
+        BodyDef{.position = Vec3(0, 0, 1.5),
+                .orientation = Quat(Eigen::AngleAxis<Real>(0.3, Vec3(1, 1, 0).normalized()))});
     const Real h = world.settings().timeStep;
     // The timer must cover timeToSleep: this many still steps, the last being the one it
     // falls asleep in (its velocities are zeroed then, so that one is not observed).
@@ -250,9 +240,9 @@ TEST(Sleep, PushedBodyMovesAfterWaking) {
 TEST(Sleep, BodyThatMayNotSleepKeepsItsIslandAwake) {
     World world;
     addGround(world);
-    BodyDef restless;
+    BodyDef restless{.position = Vec3(0, 0, 0.5)};
     restless.allowSleep = false;
-    const BodyId lower = addBox(world, Vec3(0, 0, 0.5), restless);
+    const BodyId lower = addBox(world, restless);
     const BodyId upper = addBox(world, Vec3(0, 0, 1.5));
     const BodyId apart = addBox(world, Vec3(5, 0, 0.5));
     for (int i = 0; i < 300; ++i)
@@ -316,9 +306,7 @@ TEST(Sleep, LongBodyTurningSlowlyAndSmallBodySpinningFastStayAwake) {
 TEST(Sleep, StackOfFiveSleepsAsOneIslandAndWakingTheTopWakesAll) {
     World world;
     addGround(world);
-    std::vector<BodyId> stack;
-    for (int i = 0; i < 5; ++i)
-        stack.push_back(addBox(world, Vec3(0, 0, 0.5 + i)));
+    const std::vector<BodyId> stack = testkit::buildStack(world, 5);
     int previous = world.awakeBodyCount();
     int fellAsleepAt = -1;
     for (int i = 0; i < 900 && fellAsleepAt < 0; ++i) {
@@ -378,9 +366,9 @@ TEST(Sleep, DisabledSleepNeverPutsBodiesToSleep) {
 TEST(Sleep, BodyCreatedAsleepStaysAsleepUntilTouched) {
     World world;
     addGround(world);
-    BodyDef asleep;
+    BodyDef asleep{.position = Vec3(0, 0, 0.5)};
     asleep.awake = false;
-    const BodyId lower = addBox(world, Vec3(0, 0, 0.5), asleep);  // shape added after creation
+    const BodyId lower = addBox(world, asleep);  // shape added after creation
     EXPECT_FALSE(world.isAwake(lower));
     EXPECT_EQ(world.awakeBodyCount(), 0);
     for (int i = 0; i < 30; ++i)

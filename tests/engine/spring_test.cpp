@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "refusal.h"
+#include "testkit/scenes.h"
 #include "tumble/world.h"
 
 namespace tumble {
@@ -34,13 +35,8 @@ BodyId addMass(World& world, const Vec3& position, Real m = 1,
     return world.createBody(def);
 }
 
-WorldDef quietWorld(Real h = 1.0 / 60.0, Vec3 gravity = Vec3::Zero()) {
-    WorldDef def;
-    def.gravity = gravity;
-    def.timeStep = h;
-    def.enableSleep = false;
-    return def;
-}
+using testkit::quietWorld;
+using testkit::weightlessWorld;
 
 SpringId hang(World& world, BodyId body, Real k, Real c, SpringFormulation f, Real rest = 1) {
     SpringDef def;
@@ -58,7 +54,7 @@ class BothFormulations : public ::testing::TestWithParam<SpringFormulation> {};
 // A damped mass hanging on a spring settles where k (L - L0) = m g, and the reported tension is
 // the weight. Implicit Euler's fixed point is exact; the explicit spring's too.
 TEST_P(BothFormulations, HangingMassSettlesAtStaticStretch) {
-    World world(quietWorld(1.0 / 240.0, Vec3(0, 0, -9.81)));
+    World world(quietWorld(1.0 / 240.0));
     const BodyId body = addMass(world, Vec3(0, 0, -1), 2);
     const SpringId spring = hang(world, body, 400, 20, GetParam());
     for (int i = 0; i < 240 * 10; ++i)
@@ -73,7 +69,7 @@ TEST_P(BothFormulations, HangingMassSettlesAtStaticStretch) {
 // Two free bodies joined by a spring, anchors off their centres: no external force, so the total
 // momentum stays what it was, to rounding.
 TEST_P(BothFormulations, SpringBetweenBodiesConservesMomentum) {
-    World world(quietWorld());
+    World world(weightlessWorld());
     const BodyId a = addMass(world, Vec3(0, 0, 0), 1, Vec3(0.3, 0.1, 0));
     const BodyId b = addMass(world, Vec3(1.5, 0, 0), 3, Vec3(-0.2, 0, 0.4));
     SpringDef def;
@@ -97,7 +93,7 @@ TEST_P(BothFormulations, SpringBetweenBodiesConservesMomentum) {
 // A slack thread pushes nothing: a mass moving inside the rest length keeps its velocity and the
 // element reports itself slack.
 TEST_P(BothFormulations, TensionOnlyThreadPushesNothing) {
-    World world(quietWorld());
+    World world(weightlessWorld());
     const BodyId body = addMass(world, Vec3(0.5, 0, 0), 1, Vec3(-0.2, 0.1, 0));
     SpringDef def;
     def.bodyA = body;
@@ -121,7 +117,7 @@ INSTANTIATE_TEST_SUITE_P(Spring, BothFormulations,
 // Implicit at omega h = 100 (k = 10^4 N/m, m = 1 kg, h = 1 s): bounded, and the energy only
 // falls (implicit Euler dissipates what the step cannot resolve).
 TEST(Spring, ImplicitIsStableFarBeyondTheExplicitLimit) {
-    World world(quietWorld(1.0));
+    World world(weightlessWorld(1.0));
     const BodyId body = addMass(world, Vec3(1.1, 0, 0));
     hang(world, body, 1e4, 0, SpringFormulation::Implicit);
     Real energy = world.kineticEnergy() + world.springPotentialEnergy();
@@ -138,7 +134,7 @@ TEST(Spring, ImplicitIsStableFarBeyondTheExplicitLimit) {
 // implicit Euler's O(h) damping, which shows as a slow decay.
 TEST(Spring, ImplicitOscillatesWithTheSpringPeriod) {
     const Real h = 0.005;
-    World world(quietWorld(h));
+    World world(weightlessWorld(h));
     const BodyId body = addMass(world, Vec3(1.01, 0, 0));
     hang(world, body, 100, 0, SpringFormulation::Implicit);  // omega = 10 rad/s
     std::vector<Real> crossings;
@@ -165,7 +161,7 @@ TEST(Spring, AxialStiffnessFromMaterial) {
 }
 
 TEST(Spring, BadDefinitionsAreRefusedAndCreateNothing) {
-    World world(quietWorld());
+    World world(weightlessWorld());
     const BodyId a = addMass(world, Vec3::Zero());
     const BodyId b = addMass(world, Vec3(1, 0, 0));
     const BodyId dead = addMass(world, Vec3(2, 0, 0));
@@ -195,7 +191,7 @@ TEST(Spring, BadDefinitionsAreRefusedAndCreateNothing) {
 }
 
 TEST(Spring, BadDragIsRefused) {
-    World world(quietWorld());
+    World world(weightlessWorld());
     const BodyId a = addMass(world, Vec3::Zero());
     EXPECT_TRUE(contains(refusal([&] { world.setDrag(a, {.linear = -1}); }), "Drag.linear"));
     EXPECT_TRUE(contains(refusal([&] { world.setDrag(a, {.quadratic = -1}); }), "Drag.quadratic"));
@@ -208,7 +204,7 @@ TEST(Spring, BadDragIsRefused) {
 
 // Ids: a destroyed body takes its springs with it; their ids are refused afterwards.
 TEST(Spring, DestroyingABodyDestroysItsSprings) {
-    World world(quietWorld());
+    World world(weightlessWorld());
     const BodyId a = addMass(world, Vec3::Zero());
     const BodyId b = addMass(world, Vec3(1, 0, 0));
     const BodyId c = addMass(world, Vec3(2, 0, 0));
@@ -235,7 +231,7 @@ TEST(Spring, DestroyingABodyDestroysItsSprings) {
 // speed decays as (1 - h b / m)^n (explicit drag).
 TEST(Drag, HorizontalOnlyLeavesTheFallAlone) {
     const Real h = 0.01;
-    World world(quietWorld(h, Vec3(0, 0, -9.81)));
+    World world(quietWorld(h));
     const BodyId body = addMass(world, Vec3::Zero(), 2, Vec3(3, 0, 0));
     Drag drag;
     drag.linear = 0.5;
@@ -249,7 +245,7 @@ TEST(Drag, HorizontalOnlyLeavesTheFallAlone) {
 
 // Quadratic drag while falling: terminal speed sqrt(m g / b2).
 TEST(Drag, QuadraticDragReachesTerminalSpeed) {
-    World world(quietWorld(0.01, Vec3(0, 0, -9.81)));
+    World world(quietWorld(0.01));
     const BodyId body = addMass(world, Vec3::Zero(), 0.5);
     world.setDrag(body, {.quadratic = 0.2});
     for (int i = 0; i < 2000; ++i)
@@ -260,7 +256,7 @@ TEST(Drag, QuadraticDragReachesTerminalSpeed) {
 // An explicit spring far past its limit (omega h = 20) blows up; the step that goes non-finite is
 // rolled back and names the body and the spring that drove it.
 TEST(Spring, UnstableExplicitSpringIsNamed) {
-    World world(quietWorld(0.1));
+    World world(weightlessWorld(0.1));
     const BodyId quiet = addMass(world, Vec3(5, 0, 0));
     hang(world, quiet, 1, 0, SpringFormulation::Explicit, 4.9);  // stable, nearby
     const BodyId body = addMass(world, Vec3(1.1, 0, 0));
@@ -281,7 +277,7 @@ TEST(Spring, UnstableExplicitSpringIsNamed) {
 // Springs join islands: two bodies on a spring fall asleep together, and pushing one wakes the
 // other.
 TEST(Spring, SpringJoinsIslands) {
-    WorldDef settings = quietWorld();
+    WorldDef settings = weightlessWorld();
     settings.enableSleep = true;
     World world(settings);
     const BodyId a = addMass(world, Vec3::Zero());
@@ -305,7 +301,7 @@ TEST(Spring, SpringJoinsIslands) {
 // The same string, built twice, steps to bitwise the same state.
 TEST(Spring, Deterministic) {
     auto run = [](SpringFormulation f) {
-        World world(quietWorld(1.0 / 60.0, Vec3(0, 0, -9.81)));
+        World world(quietWorld(1.0 / 60.0));
         BodyId previous;
         std::vector<BodyId> masses;
         for (int i = 1; i <= 20; ++i) {

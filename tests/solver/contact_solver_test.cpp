@@ -8,6 +8,7 @@
 #include <numbers>
 #include <vector>
 
+#include "testkit/solver_scenes.h"
 #include "tumble/core/error.h"
 
 namespace tumble {
@@ -28,22 +29,7 @@ struct Scene {
         bodies.resize(2);
         bodies[1].inverseMass = 1 / mass;
         bodies[1].inverseInertia = Mat3::Identity() * (6 / mass);
-        ContactConstraint c;
-        c.bodyA = 0;
-        c.bodyB = 1;
-        c.normal = Vec3::UnitZ();
-        c.friction = friction;
-        c.pointCount = 4;
-        int i = 0;
-        for (Real x : {-0.5, 0.5}) {
-            for (Real y : {-0.5, 0.5}) {
-                c.points[i].rA = Vec3(x, y, 0);
-                c.points[i].rB = Vec3(x, y, -0.5);
-                c.points[i].separation = separation;
-                ++i;
-            }
-        }
-        constraints.push_back(c);
+        constraints.push_back(testkit::cubeOnGround(1, friction, separation));
         // These tests check the converged answer of each kind of row; how close a fixed budget
         // gets is measured by the validation cases.
         settings.iterations = 200;

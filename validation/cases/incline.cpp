@@ -44,7 +44,8 @@ Slide runIncline(double theta, double yaw, double duration, bool fit) {
     const Vec3 downSlope = tilt * Vec3::UnitX();  // (cos theta, 0, -sin theta)
     const Quat orientation = tilt * Quat(Eigen::AngleAxis<Real>(yaw, Vec3::UnitZ()));
     const BodyId cube =
-        scenes::addBox(world, 0.5 * normal, orientation, Vec3::Constant(0.5), surface);
+        scenes::addBox(world, BodyDef{.position = 0.5 * normal, .orientation = orientation},
+                       Vec3::Constant(0.5), surface);
     const Vec3 start = world.position(cube);
 
     Slide slide;

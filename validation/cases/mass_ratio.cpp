@@ -32,10 +32,9 @@ Rest settle(double bottomMass, double topMass) {
     World world(scenes::stackWorld());
     scenes::addGround(world, scenes::material(kFriction));
     // Unit cubes: density = mass.
-    const BodyId bottom =
-        scenes::addBox(world, Vec3(0, 0, 0.5), Quat::Identity(), Vec3::Constant(0.5),
-                       scenes::material(kFriction, 0, bottomMass));
-    const BodyId top = scenes::addBox(world, Vec3(0, 0, 1.5), Quat::Identity(), Vec3::Constant(0.5),
+    const BodyId bottom = scenes::addBox(world, Vec3(0, 0, 0.5), Vec3::Constant(0.5),
+                                         scenes::material(kFriction, 0, bottomMass));
+    const BodyId top = scenes::addBox(world, Vec3(0, 0, 1.5), Vec3::Constant(0.5),
                                       scenes::material(kFriction, 0, topMass));
     const BodyId cubes[] = {bottom, top};
     const Vec3 start[] = {world.position(bottom), world.position(top)};

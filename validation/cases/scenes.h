@@ -1,82 +1,30 @@
 #pragma once
-/// Scene pieces shared by the contact validation cases: a ground, boxes, stacks and pyramids of
-/// unit cubes and a "still standing" test (the bounce's apex tracker is fig45.h's). Header-only:
-/// each case is one translation unit and these are small.
+/// What the contact validation cases share beyond the scene kit (testkit/scenes.h, whose
+/// ground, boxes, stacks and pyramids they build with): a "still standing" test and the run of
+/// a pile (the bounce's apex tracker is fig45.h's). Header-only: each case is one translation
+/// unit and these are small.
 
 #include <algorithm>
 #include <cmath>
 #include <utility>
 #include <vector>
 
+#include "testkit/scenes.h"
 #include "tumble/tumble.h"
 
 namespace tumble::validation::scenes {
 
-constexpr Real kG = 9.81;  ///< |g| used by every contact case (m/s^2)
+constexpr Real kG = testkit::kGravity;  ///< |g| used by every contact case (m/s^2)
 
-/// The settings of the study's and the peers' stack scenes (DESIGN.md section 6): h = 1/60,
-/// 10 PGS iterations, gravity -Z; everything else the engine default except sleeping, which is
-/// off: the claims are the solver's, and a sleeping stack would hide a slow lean or creep.
-inline WorldDef stackWorld(Real timeStep = 1.0 / 60.0, int iterations = 10) {
-    WorldDef def{.gravity = Vec3(0, 0, -kG), .timeStep = timeStep};
-    def.solver.iterations = iterations;
-    def.enableSleep = false;
-    return def;
-}
-
-inline Material material(Real friction, Real restitution = 0, Real density = 1) {
-    return Material{.friction = friction, .restitution = restitution, .density = density};
-}
-
-/// A static half-space whose surface passes through the origin with outward normal
-/// `tilt * +Z`. Returns the static body.
-inline BodyId addGround(World& world, const Material& surface,
-                        const Quat& tilt = Quat::Identity()) {
-    const BodyId ground = world.createBody(BodyDef{.type = BodyType::Static, .orientation = tilt});
-    world.createShape(ground, ShapeDef{.geometry = HalfSpace{}, .material = surface});
-    return ground;
-}
-
-/// A dynamic box whose mass comes from its material's density.
-inline BodyId addBox(World& world, const Vec3& position, const Quat& orientation,
-                     const Vec3& halfExtents, const Material& surface,
-                     const Vec3& velocity = Vec3::Zero()) {
-    const BodyId box = world.createBody(
-        BodyDef{.position = position, .orientation = orientation, .linearVelocity = velocity});
-    world.createShape(box, ShapeDef{.geometry = Box{halfExtents}, .material = surface});
-    return box;
-}
-
-/// A column of `count` unit cubes standing face to face on the ground (z = 0), each placed
-/// exactly touching the one below. Bottom first.
-inline std::vector<BodyId> buildStack(World& world, int count, const Material& surface) {
-    std::vector<BodyId> cubes;
-    for (int i = 0; i < count; ++i) {
-        cubes.push_back(
-            addBox(world, Vec3(0, 0, 0.5 + i), Quat::Identity(), Vec3::Constant(0.5), surface));
-    }
-    return cubes;
-}
-
-/// A planar pyramid of unit cubes in the x-z plane: row j (from 0 at the ground) holds
-/// base - j cubes, centred on x = 0, neighbours `gap` apart (m) so that cubes of one row touch
-/// only the two below and above them. Rows touch exactly. Returns the cubes row by row with
-/// their rows in `levels`.
-inline std::vector<BodyId> buildPyramid(World& world, int base, Real gap, const Material& surface,
-                                        std::vector<int>& levels) {
-    std::vector<BodyId> cubes;
-    const Real pitch = 1 + gap;
-    for (int row = 0; row < base; ++row) {
-        const int n = base - row;
-        for (int i = 0; i < n; ++i) {
-            const Real x = (i - 0.5 * (n - 1)) * pitch;
-            cubes.push_back(addBox(world, Vec3(x, 0, 0.5 + row), Quat::Identity(),
-                                   Vec3::Constant(0.5), surface));
-            levels.push_back(row);
-        }
-    }
-    return cubes;
-}
+// The ground, boxes, stacks and pyramids are the scene kit's (testkit/scenes.h): stackWorld is
+// the settings of the study's and the peers' stack scenes (DESIGN.md section 6), sleeping off
+// because the claims are the solver's and a sleeping stack would hide a slow lean or creep.
+using testkit::addBox;
+using testkit::addGround;
+using testkit::buildPyramid;
+using testkit::buildStack;
+using testkit::material;
+using testkit::stackWorld;
 
 /// Whether a pile of cubes still stands where it was built. A cube "stands" while its centre
 /// is within `kHorizontal` of its start position horizontally and has not sunk more than

@@ -42,8 +42,9 @@ Stop launch(double direction, FrictionModel friction) {
     const Material surface = scenes::material(kFriction);
     scenes::addGround(world, surface);
     const Vec3 velocity = kSpeed * Vec3(std::cos(direction), std::sin(direction), 0);
-    const BodyId cube = scenes::addBox(world, Vec3(0, 0, 0.5), Quat::Identity(),
-                                       Vec3::Constant(0.5), surface, velocity);
+    const BodyId cube =
+        scenes::addBox(world, BodyDef{.position = Vec3(0, 0, 0.5), .linearVelocity = velocity},
+                       Vec3::Constant(0.5), surface);
     const Vec3 start = world.position(cube);
     const int steps = static_cast<int>(kMaxTime / world.settings().timeStep);
     for (int i = 0; i < steps; ++i) {

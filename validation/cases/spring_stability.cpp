@@ -32,19 +32,12 @@
 
 #include "../case.h"
 #include "lumped.h"
+#include "testkit/scenes.h"
 
 namespace tumble::validation {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-WorldDef quiet(double h) {
-    WorldDef def;
-    def.gravity = Vec3::Zero();
-    def.timeStep = h;
-    def.enableSleep = false;
-    return def;
-}
 
 // Largest |x - x_eq| over the last quarter / over the first quarter; infinite when unstable.
 double growth(const std::vector<double>& excursion) {
@@ -62,7 +55,7 @@ double growth(const std::vector<double>& excursion) {
 bool singleMassBounded(double omegaH, int steps) {
     const double h = 0.01;
     const double k = (omegaH / h) * (omegaH / h);  // m = 1
-    World world(quiet(h));
+    World world(testkit::weightlessWorld(h));
     const BodyId body = addPointMass(world, Vec3(1.1, 0, 0), 1);
     SpringDef def;
     def.bodyA = body;
@@ -162,7 +155,7 @@ double referenceDrift(int n, double omegaEH, double amplitude, int steps) {
 StringRun runString(int n, double omegaEH, SpringFormulation formulation, int steps, bool energy,
                     double amplitude = 1) {
     const double h = omegaEH / std::sqrt(kStiffness / kMass);
-    World world(quiet(h));
+    World world(testkit::weightlessWorld(h));
     std::vector<BodyId> masses;
     for (int j = 1; j <= n; ++j)
         masses.push_back(addPointMass(world, stringStart(j, amplitude), kMass));

@@ -31,7 +31,6 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <string>
 #include <vector>
 
@@ -43,7 +42,6 @@
 namespace tumble::validation {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr int kNodes = 30;
 constexpr double kLength = 1.5;  // (m)
 constexpr double kSegment = kLength / kNodes;

@@ -11,7 +11,7 @@
 
 #include "tumble/world.h"
 
-namespace tumble::test {
+namespace tumble::testkit {
 
 /// FNV-1a over 64-bit words: enough to tell two trajectories apart, cheap enough to run per step.
 class Hash {
@@ -52,4 +52,4 @@ inline std::uint64_t stateHash(const World& w, std::span<const BodyId> bodies) {
     return h.value();
 }
 
-}  // namespace tumble::test
+}  // namespace tumble::testkit

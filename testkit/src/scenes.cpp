@@ -1,0 +1,153 @@
+// The scene kit (testkit/scenes.h). The builders keep the order of their bodies and shapes and
+// the arithmetic of their positions as the copies they replaced had them: the validation
+// table, the golden trajectories and the soak's figures depend on it bit for bit.
+
+#include "testkit/scenes.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tumble::testkit {
+
+WorldDef quietWorld(Real timeStep, const Vec3& gravity) {
+    WorldDef def;
+    def.gravity = gravity;
+    def.timeStep = timeStep;
+    def.enableSleep = false;
+    return def;
+}
+
+WorldDef weightlessWorld(Real timeStep) {
+    return quietWorld(timeStep, Vec3::Zero());
+}
+
+WorldDef stackWorld(Real timeStep, int iterations) {
+    WorldDef def = quietWorld(timeStep);
+    def.solver.iterations = iterations;
+    return def;
+}
+
+Material material(Real friction, Real restitution, Real density) {
+    return Material{.friction = friction, .restitution = restitution, .density = density};
+}
+
+BodyId addGround(World& world, const Material& surface, const Quat& tilt) {
+    const BodyId ground = world.createBody(BodyDef{.type = BodyType::Static, .orientation = tilt});
+    world.createShape(ground, ShapeDef{.geometry = HalfSpace{}, .material = surface});
+    return ground;
+}
+
+BodyId addBox(World& world, const BodyDef& body, const Vec3& halfExtents, const Material& surface) {
+    const BodyId box = world.createBody(body);
+    world.createShape(box, ShapeDef{.geometry = Box{halfExtents}, .material = surface});
+    return box;
+}
+
+BodyId addBox(World& world, const Vec3& position, const Vec3& halfExtents,
+              const Material& surface) {
+    return addBox(world, BodyDef{.position = position}, halfExtents, surface);
+}
+
+std::vector<BodyId> buildStack(World& world, int count, const Material& surface) {
+    std::vector<BodyId> cubes;
+    for (int i = 0; i < count; ++i)
+        cubes.push_back(addBox(world, Vec3(0, 0, 0.5 + i), Vec3::Constant(0.5), surface));
+    return cubes;
+}
+
+std::vector<BodyId> buildPyramid(World& world, int base, Real gap, const Material& surface,
+                                 std::vector<int>& levels) {
+    std::vector<BodyId> cubes;
+    const Real pitch = 1 + gap;
+    for (int row = 0; row < base; ++row) {
+        const int n = base - row;
+        for (int i = 0; i < n; ++i) {
+            const Real x = (i - 0.5 * (n - 1)) * pitch;
+            cubes.push_back(addBox(world, Vec3(x, 0, 0.5 + row), Vec3::Constant(0.5), surface));
+            levels.push_back(row);
+        }
+    }
+    return cubes;
+}
+
+int Rain::perSide() const {
+    return std::max(1, static_cast<int>((2 * half - pitch) / pitch));
+}
+
+int Rain::perWave() const {
+    return perSide() * perSide();
+}
+
+BodyId Rain::addContainer(World& world) const {
+    const BodyId container = world.createBody(BodyDef{.type = BodyType::Static});
+    world.createShape(container, ShapeDef{.geometry = HalfSpace{}});
+    for (int side = 0; side < 4; ++side) {
+        const Real sign = side % 2 == 0 ? 1 : -1;
+        const bool alongX = side < 2;
+        ShapeDef wall;
+        wall.geometry = Box{alongX ? Vec3(0.1, half, 3) : Vec3(half, 0.1, 3)};
+        wall.localPose.position =
+            alongX ? Vec3(sign * (half + 0.1), 0, 3) : Vec3(0, sign * (half + 0.1), 3);
+        world.createShape(container, wall);
+    }
+    return container;
+}
+
+namespace {
+
+Shape rainShape(int index) {
+    switch (index % 4) {
+        case 0:
+            return Sphere{0.15};
+        case 1:
+            return Box{Vec3(0.15, 0.12, 0.1)};
+        case 2:
+            return Capsule{0.1, 0.1};
+        default:
+            return Cylinder{0.14, 0.1};
+    }
+}
+
+}  // namespace
+
+BodyId Rain::addBody(World& world, int index) const {
+    const int slot = index % perWave();
+    const int across = perSide();
+    BodyDef def;
+    def.position = Vec3(-half + pitch + pitch * (slot % across),
+                        -half + pitch + pitch * (slot / across), height);
+    def.orientation = Quat(Eigen::AngleAxis<Real>(0.6 * index, Vec3(1, 2, 3).normalized()));
+    def.linearVelocity = Vec3(0, 0, -speed);
+    const BodyId body = world.createBody(def);
+    world.createShape(body, ShapeDef{.geometry = rainShape(index), .material = material});
+    return body;
+}
+
+NetDef captureNet(int nodesPerSide, Real meshSize, const Vec3& center) {
+    NetDef net;
+    net.rows = nodesPerSide;
+    net.columns = nodesPerSide;
+    net.meshSize = meshSize;
+    net.center = center;
+    net.node.mass = 0.02;
+    net.node.radius = 0.03;
+    net.node.collide = true;
+    net.cornerMass = 0.5;
+    net.thread.axialRigidity = 2000;
+    net.thread.damping = 0.5;
+    return net;
+}
+
+bool simulate(World& world, int steps) {
+    for (int i = 0; i < steps; ++i) {
+        if (!world.step().ok())
+            return false;
+    }
+    return true;
+}
+
+bool simulateFor(World& world, Real seconds) {
+    return simulate(world, static_cast<int>(std::lround(seconds / world.settings().timeStep)));
+}
+
+}  // namespace tumble::testkit
