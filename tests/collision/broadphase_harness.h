@@ -11,8 +11,8 @@
 #include <random>
 #include <vector>
 
-#include "tumble/collision/sweep_and_prune.h"
 #include "tumble/collision/grid_broadphase.h"
+#include "tumble/collision/sweep_and_prune.h"
 
 namespace tumble::test {
 

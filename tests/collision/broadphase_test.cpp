@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "collision/broadphase_harness.h"
-#include "tumble/collision/sweep_and_prune.h"
 #include "tumble/collision/grid_broadphase.h"
+#include "tumble/collision/sweep_and_prune.h"
 #include "tumble/core/error.h"
 
 namespace tumble {
