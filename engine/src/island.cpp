@@ -9,6 +9,14 @@
 namespace tumble {
 namespace {
 
+/// A still body counts as in balance when the step changed no point's velocity by more than
+/// this times h (m/s^2): 0.05 % of g, so a weight on a spring sleeps within 0.05 % of its static
+/// deflection (its unbalanced force is k x = m a), while the velocities of a settled pile change
+/// by less. Measured on the velocity change, the net effect of gravity, contacts, joints,
+/// springs, drag and controllers together, so no force needs adding up. (A constant, like the
+/// rule itself, until a scene needs another: WorldDef would be its home.)
+constexpr Real kSleepAcceleration = 0.005;
+
 bool isTouching(const Contact& contact) {
     return contact.manifold.pointCount > 0;
 }
@@ -101,17 +109,24 @@ void Islands::updateSleep(BodyStore& bodies, ContactManager& contacts, const Spr
         return;
     const Real linear = settings.linearSleepVelocity;
     const Real angular = settings.angularSleepVelocity;
+    const Real change = kSleepAcceleration * context.h;
     bool anySleepy = false;
     for (const std::uint32_t index : bodies.awake) {
         BodyInfo& info = bodies.info[index];
         if (info.type != BodyType::Dynamic)
             continue;
         const BodyMotion& m = bodies.motion[index];
+        const BodyMotion& before = bodies.previousMotion[index];
         // Still when no point of the body moves faster than the linear threshold (its centre's
         // speed plus its turn at its extent), and it turns slower than the angular threshold.
         const Real turn = m.angularVelocity.norm();
+        // In balance when the step, all forces and constraints together, changed no point's
+        // velocity by more than sleepAcceleration h: a slow body still being pulled is not at
+        // rest (a weight on a spring at the bottom of a small swing).
+        const Real kick = (m.linearVelocity - before.linearVelocity).norm() +
+                          info.extent * (m.angularVelocity - before.angularVelocity).norm();
         if (info.pushed || !info.allowSleep || turn > angular ||
-            m.linearVelocity.norm() + info.extent * turn > linear) {
+            m.linearVelocity.norm() + info.extent * turn > linear || kick > change) {
             info.sleepTime = 0;
             info.pushed = false;
         } else {
