@@ -132,6 +132,27 @@ Energy energyOf(const BuiltScene& built) {
     return e;
 }
 
+std::vector<std::string> nonFiniteFigures(const Summary& s) {
+    std::vector<std::pair<std::string, Real>> figures{{"simulatedTime", s.simulatedTime},
+                                                      {"wallTime", s.wallTime},
+                                                      {"realTimeFactor", s.realTimeFactor},
+                                                      {"deepestPenetration", s.deepestPenetration},
+                                                      {"lastSolverResidual", s.lastResidual}};
+    for (const auto& [name, e] : {std::pair{"start", s.start}, std::pair{"end", s.end}}) {
+        const std::string at = std::string("energy.") + name + ".";
+        figures.insert(figures.end(), {{at + "kinetic", e.kinetic},
+                                       {at + "potential", e.potential},
+                                       {at + "elastic", e.elastic},
+                                       {at + "total", e.total()}});
+    }
+    std::vector<std::string> out;
+    for (const auto& [name, value] : figures) {
+        if (!std::isfinite(value))
+            out.push_back(name);
+    }
+    return out;
+}
+
 std::string summaryJson(const Summary& s) {
     auto energy = [](const Energy& e) {
         return nlohmann::ordered_json{{"kinetic", e.kinetic},
@@ -159,6 +180,41 @@ std::string summaryJson(const Summary& s) {
 }
 
 namespace {
+
+/// Refuses a scene whose energy at the start is no finite number (a position or velocity so
+/// large that m g z or m v^2 / 2 overflows a double): every figure of the run would be
+/// meaningless. Names the body and the key; what overflows only later is warned of instead.
+void checkFiniteStart(const Scene& scene, const BuiltScene& built, const Energy& start) {
+    if (std::isfinite(start.total()))
+        return;
+    const World& w = built.world;
+    for (std::size_t i = 0; i < built.bodies.size(); ++i) {
+        const BodyId b = built.bodies[i];
+        if (w.bodyType(b) != BodyType::Dynamic)
+            continue;
+        const MassProperties mass = w.massProperties(b);
+        const Vec3 v = w.linearVelocity(b);
+        const Vec3 turn = w.orientation(b).conjugate() * w.angularVelocity(b);  // body frame
+        const Real potential =
+            -mass.mass * built.gravityScale[i] * w.settings().gravity.dot(w.centerOfMass(b));
+        const Real kinetic = mass.mass * v.squaredNorm() / 2;
+        const Real spin = turn.dot(mass.inertia * turn) / 2;
+        const char* key = !std::isfinite(potential) ? "position"
+                          : !std::isfinite(kinetic) ? "linearVelocity"
+                          : !std::isfinite(spin)    ? "angularVelocity"
+                                                    : nullptr;
+        if (key == nullptr)
+            continue;
+        const BodySpec& spec = scene.bodies[i];
+        const std::string path = spec.path + "." + key;
+        fail(located(scene, scene.lines.count(path) != 0 ? path : spec.path), " (\"", spec.name,
+             "\"): the body's energy at the start is not a finite number (potential ", potential,
+             " J, kinetic ", kinetic + spin, " J): too large for the run's figures");
+    }
+    fail(scene.source, ": the energy at the start is not a finite number (kinetic ", start.kinetic,
+         " J, potential ", start.potential, " J, elastic ", start.elastic,
+         " J): too large for the run's figures");
+}
 
 /// The first multiple of `period` after `time` (within a fraction of a step h); `period` for a
 /// period of 0 (every step).
@@ -206,6 +262,8 @@ int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, s
     if (!options.resume.empty())
         resume(world, built, scene, options.resume);
     // Every output is opened before the first step: a bad path is bad input, not a lost run.
+    const Energy startEnergy = energyOf(built);
+    checkFiniteStart(scene, built, startEnergy);
     auto csv = openOutput(options.record, "record");
     auto summaryFile = openOutput(options.summary, "summary");
     auto pictureFile = openOutput(options.picture, "picture");
@@ -217,7 +275,7 @@ int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, s
     s.scene = scene.name;
     s.timeStep = world.settings().timeStep;
     s.bodies = static_cast<int>(built.bodies.size());
-    s.start = energyOf(built);
+    s.start = startEnergy;
     const auto steps = static_cast<std::uint64_t>(std::ceil(scene.duration / s.timeStep - 1e-9));
     SvgPicture picture(view,
                        scene.name + (scene.description.empty() ? "" : ": " + scene.description));
@@ -300,6 +358,9 @@ int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, s
         s.warnings.push_back(describe(w));
     if (world.droppedWarnings() > 0)
         s.warnings.push_back(std::to_string(world.droppedWarnings()) + " more warnings not kept");
+    for (const std::string& figure : nonFiniteFigures(s))
+        s.warnings.push_back("summary: " + figure +
+                             " is not a finite number (written as null): it overflowed a double");
     // A crowded scene can raise dozens; the summary keeps them all.
     constexpr std::size_t kPrinted = 5;
     for (std::size_t i = 0; i < s.warnings.size() && i < kPrinted; ++i)

@@ -66,6 +66,10 @@ Energy energyOf(const BuiltScene& built);
 int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, std::ostream& err,
              Summary* result = nullptr);
 
+/// The summary's figures that are not finite numbers, by their JSON names ("energy.end.total"):
+/// JSON has no infinity, so they are written as null and each is also warned of.
+std::vector<std::string> nonFiniteFigures(const Summary& s);
+
 /// The summary as JSON text.
 std::string summaryJson(const Summary& s);
 

@@ -88,6 +88,17 @@ void bodyDef(const BodyDef& def) {
         fail("BodyDef.gravityScale = ", def.gravityScale, " must be finite");
     if (def.type == BodyType::Dynamic)
         massProperties(def.mass, "BodyDef.mass");
+    if (def.type == BodyType::Static) {
+        // As World::setLinearVelocity refuses it: the velocity would be dropped unseen.
+        if (!def.linearVelocity.isZero(0)) {
+            fail("BodyDef.linearVelocity = ", format(def.linearVelocity),
+                 ": a static body never moves, it must be zero (a kinematic body moves)");
+        }
+        if (!def.angularVelocity.isZero(0)) {
+            fail("BodyDef.angularVelocity = ", format(def.angularVelocity),
+                 ": a static body never moves, it must be zero (a kinematic body moves)");
+        }
+    }
     if (def.fixedRotation) {
         if (def.type != BodyType::Dynamic)
             fail("BodyDef.fixedRotation: only a dynamic body can be translation-only");

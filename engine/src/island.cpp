@@ -13,6 +13,21 @@ bool isTouching(const Contact& contact) {
     return contact.manifold.pointCount > 0;
 }
 
+/// An island that touches nothing falls asleep only in a step that changed no point of any of its
+/// bodies' velocity by more than this times h (m/s^2): 0.05 % of g, so a weight on a spring
+/// sleeps within 0.05 % of its static deflection (its unbalanced force is k x = m a). See
+/// docs/ARCHITECTURE.md, "Islands and sleeping", for why islands held by contacts are exempt.
+constexpr Real kSleepAcceleration = 0.005;
+
+/// How much the step changed the velocity of the body's fastest-changing point (m/s): the net
+/// effect of gravity, springs, joints, drag and controllers, so no force needs adding up.
+Real velocityChange(const BodyStore& bodies, std::uint32_t index) {
+    const BodyMotion& m = bodies.motion[index];
+    const BodyMotion& before = bodies.previousMotion[index];
+    return (m.linearVelocity - before.linearVelocity).norm() +
+           bodies.info[index].extent * (m.angularVelocity - before.angularVelocity).norm();
+}
+
 }  // namespace
 
 void Islands::wake(BodyStore& bodies, ContactManager& contacts, std::uint32_t index,
@@ -125,6 +140,7 @@ void Islands::updateSleep(BodyStore& bodies, ContactManager& contacts, const Spr
     const std::uint32_t count = static_cast<std::uint32_t>(bodies.awake.size());
     parent_.resize(count);
     std::iota(parent_.begin(), parent_.end(), 0u);
+    touches_.assign(count, 0);
     for (const std::uint32_t slot : contacts.activeSlots()) {
         const Contact& contact = contacts.contact(slot);
         if (!contacts.isActive(slot) || !isTouching(contact))
@@ -133,6 +149,10 @@ void Islands::updateSleep(BodyStore& bodies, ContactManager& contacts, const Spr
         const std::uint32_t b = bodies.indexOf(contact.bodyB);
         const bool dynamicA = bodies.isAwakeDynamic(a);
         const bool dynamicB = bodies.isAwakeDynamic(b);
+        if (dynamicA)
+            touches_[bodies.info[a].awakeIndex] = 1;
+        if (dynamicB)
+            touches_[bodies.info[b].awakeIndex] = 1;
         if (dynamicA && dynamicB) {
             unite(bodies.info[a].awakeIndex, bodies.info[b].awakeIndex);
         } else if (dynamicA && bodies.isMovingKinematic(b)) {
@@ -166,18 +186,26 @@ void Islands::updateSleep(BodyStore& bodies, ContactManager& contacts, const Spr
     }
 
     islandSleepTime_.assign(count, std::numeric_limits<Real>::infinity());
+    islandBalance_.assign(count, kInBalance);
+    const Real change = kSleepAcceleration * context.h;
     for (std::uint32_t k = 0; k < count; ++k) {
         const BodyInfo& info = bodies.info[bodies.awake[k]];
         if (info.type == BodyType::Dynamic) {
-            Real& islandTime = islandSleepTime_[find(k)];
-            islandTime = std::min(islandTime, info.sleepTime);
+            const std::uint32_t root = find(k);
+            islandSleepTime_[root] = std::min(islandSleepTime_[root], info.sleepTime);
+            if (touches_[k] != 0)
+                islandBalance_[root] = kHeld;
+            else if (islandBalance_[root] == kInBalance &&
+                     velocityChange(bodies, bodies.awake[k]) > change)
+                islandBalance_[root] = kOutOfBalance;
         }
     }
     sleepers_.clear();
     for (std::uint32_t k = 0; k < count; ++k) {
         const std::uint32_t index = bodies.awake[k];
+        const std::uint32_t root = find(k);
         if (bodies.info[index].type == BodyType::Dynamic &&
-            islandSleepTime_[find(k)] >= settings.timeToSleep)
+            islandSleepTime_[root] >= settings.timeToSleep && islandBalance_[root] != kOutOfBalance)
             sleepers_.push_back(index);
     }
     putToSleep(bodies, contacts, sleepers_);

@@ -10,7 +10,10 @@
 /// WorldDef::linearSleepVelocity, and its angular speed below angularSleepVelocity) and resets
 /// otherwise, or when it may not sleep, or when it touches
 /// a moving kinematic body. Only when some timer has reached timeToSleep is a union-find run over
-/// the awake bodies and touching active contacts; an island sleeps when its smallest timer has.
+/// the awake bodies and touching active contacts; an island sleeps when its smallest timer has,
+/// and -- when no touching contact holds any of its bodies -- in a step that changed no point's
+/// velocity by more than kSleepAcceleration h (a weight on a spring is slow near the ends of a
+/// small bounce, but not in balance there).
 /// Sleeping bodies lose their velocities, leave BodyStore::awake, and their contacts with
 /// nothing awake on the other side are parked (ContactManager), so no per-step loop visits them.
 ///
@@ -79,6 +82,10 @@ private:
 
     std::vector<std::uint32_t> parent_;
     std::vector<Real> islandSleepTime_;  ///< smallest timer of each set, at its root
+    std::vector<std::uint8_t> touches_;  ///< per awake-list position: has a touching contact
+    /// Per set, at its root: does a contact hold it, else is it in balance this step?
+    enum Balance : std::uint8_t { kInBalance, kOutOfBalance, kHeld };
+    std::vector<std::uint8_t> islandBalance_;
     std::vector<std::uint32_t> stack_;
     std::vector<std::uint8_t> visited_;
     std::vector<std::uint32_t> sleepers_;

@@ -255,7 +255,7 @@ void buildConnections(const Scene& scene, BuiltScene& built) {
                                                spec.youngsModulusAndArea->second, def.restLength);
             springs.push_back(world.createSpring(def));
         } catch (const InvalidArgument& e) {
-            fail(scene.source, ": ", spec.path, ": ", e.what());
+            fail(located(scene, spec.path), ": ", e.what());
         }
     }
     // "springs" first, then the threads the generators made.
@@ -269,7 +269,7 @@ void buildConnections(const Scene& scene, BuiltScene& built) {
             if (spec.controller)
                 world.setJointController(built.joints.back(), *spec.controller);
         } catch (const InvalidArgument& e) {
-            fail(scene.source, ": ", spec.path, ": ", e.what());
+            fail(located(scene, spec.path), ": ", e.what());
         }
     }
 }

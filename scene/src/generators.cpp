@@ -2,6 +2,7 @@
 // shared material reader. Strings and nets are in lumped_generators.cpp.
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "scene_parts.h"
@@ -30,6 +31,10 @@ BodySpec makeBox(const std::string& name, const std::string& path, const Vec3& p
 Vec3 rowAxis(JsonObject& o) {
     return o.choice("axis", "x", {"x", "y"}) == "y" ? Vec3::UnitY() : Vec3::UnitX();
 }
+
+/// The counts of the box generators are bounded by the bodies they make (checkRoom), which says
+/// more than a bound on each count would.
+constexpr int kAnyCount = std::numeric_limits<int>::max();
 
 /// Refuses a generator that would take the scene past kMaxSceneBodies, before any is made: a
 /// mistyped count (1e8 boxes) must be an error message, not the machine running out of memory.
@@ -157,13 +162,13 @@ void parseGenerator(const Json& value, const std::string& path, const Materials&
     };
     if (type == "stack") {
         // A column, bottom first; `gap` (m) of air between blocks drops them onto each other.
-        const int count = o.integer("count", 5, 1);
+        const int count = o.integer("count", 5, 1, kAnyCount);
         checkRoom(bodies, count, path);
         for (int i = 0; i < count; ++i)
             add(base + Vec3(0, 0, h.z() + i * (2 * h.z() + gap)));
     } else if (type == "pyramid") {
         // Row j holds base - j boxes, centred; `gap` (m) between neighbours of a row.
-        const int count = o.integer("base", 5, 1);
+        const int count = o.integer("base", 5, 1, kAnyCount);
         checkRoom(bodies, 0.5 * count * (count + 1.0), path);
         const Vec3 axis = rowAxis(o);
         const Real pitch = 2 * h.dot(axis) + gap;
@@ -175,8 +180,8 @@ void parseGenerator(const Json& value, const std::string& path, const Materials&
         }
     } else {
         // Rows of bricks; a "running" bond shifts every other row by half a brick, as masons do.
-        const int rows = o.integer("rows", 5, 1);
-        const int columns = o.integer("columns", 8, 1);
+        const int rows = o.integer("rows", 5, 1, kAnyCount);
+        const int columns = o.integer("columns", 8, 1, kAnyCount);
         checkRoom(bodies, static_cast<double>(rows) * columns, path);
         const Vec3 axis = rowAxis(o);
         const bool running = o.choice("bond", "running", {"running", "stack"}) == "running";

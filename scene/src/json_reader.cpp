@@ -1,11 +1,123 @@
 #include "tumble/scene/json_reader.h"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <numbers>
 
 #include "tumble/core/error.h"
 
 namespace tumble::cli {
+namespace {
+
+/// An input iterator over the text that remembers how far the parser has read: nlohmann's parser
+/// callbacks carry no position, and a line is what a person looks for in a file.
+class TrackingIterator {
+public:
+    using iterator_category = std::input_iterator_tag;
+    using value_type = char;
+    using difference_type = std::ptrdiff_t;
+    using pointer = const char*;
+    using reference = const char&;
+
+    TrackingIterator(const char* at, const char** read) : at_(at), read_(read) {}
+    reference operator*() const { return *at_; }
+    TrackingIterator& operator++() {
+        *read_ = ++at_;
+        return *this;
+    }
+    TrackingIterator operator++(int) {
+        TrackingIterator before = *this;
+        ++*this;
+        return before;
+    }
+    bool operator==(const TrackingIterator& other) const { return at_ == other.at_; }
+
+private:
+    const char* at_;
+    const char** read_;
+};
+
+/// An object or array the parser is inside.
+struct OpenValue {
+    std::string path;
+    bool array = false;
+    std::size_t elements = 0;         ///< finished elements (arrays)
+    std::map<std::string, int> keys;  ///< key -> its line (objects)
+    std::string key;                  ///< the key whose value comes next (objects)
+};
+
+}  // namespace
+
+Json parseJson(const std::string& text, JsonLines& lines) {
+    const char* read = text.data();
+    const char* counted = text.data();
+    int line = 1;
+    // The line of the token just read. Every token ends at the last character read except a
+    // number, which the lexer knows has ended only by reading one more: so read - 1.
+    const auto lineNow = [&] {
+        const char* upTo = std::max(counted, read - 1);
+        line += static_cast<int>(std::count(counted, upTo, '\n'));
+        counted = upTo;
+        return line;
+    };
+    std::vector<OpenValue> open;
+    const auto startValue = [&](int at) {  // the path of the value that starts here
+        if (open.empty()) {
+            lines[""] = at;
+            return std::string();
+        }
+        const OpenValue& parent = open.back();
+        if (!parent.array)
+            return parent.path.empty() ? parent.key : parent.path + "." + parent.key;
+        std::string path = parent.path + "[" + std::to_string(parent.elements) + "]";
+        lines[path] = at;
+        return path;
+    };
+    const auto endValue = [&] {
+        if (!open.empty() && open.back().array)
+            ++open.back().elements;
+    };
+    const Json::parser_callback_t track = [&](int, Json::parse_event_t event, Json& parsed) {
+        using Event = Json::parse_event_t;
+        if (event == Event::object_start || event == Event::array_start) {
+            std::string path = startValue(lineNow());
+            open.push_back({std::move(path), event == Event::array_start, 0, {}, {}});
+        } else if (event == Event::object_end || event == Event::array_end) {
+            open.pop_back();
+            endValue();
+        } else if (event == Event::key) {
+            OpenValue& object = open.back();
+            object.key = parsed.get<std::string>();
+            const int at = lineNow();
+            const std::string path =
+                object.path.empty() ? object.key : object.path + "." + object.key;
+            const auto [first, added] = object.keys.emplace(object.key, at);
+            lines[path] = at;  // a duplicate is refused at its own line
+            if (!added)
+                failAt(path, "key given twice in one object (lines ", first->second, " and ", at,
+                       "): the last value would silently replace the first");
+            lines[path] = at;
+        } else {  // a number, string, boolean or null
+            startValue(lineNow());
+            endValue();
+        }
+        return true;
+    };
+    const char* end = text.data() + text.size();
+    return Json::parse(TrackingIterator(text.data(), &read), TrackingIterator(end, &read), track);
+}
+
+int lineOf(const JsonLines& lines, std::string path) {
+    for (;;) {
+        if (const auto it = lines.find(path); it != lines.end())
+            return it->second;
+        if (path.empty())
+            return 0;
+        const std::size_t cut = path.back() == ']' ? path.rfind('[') : path.rfind('.');
+        path.erase(cut == std::string::npos ? 0 : cut);
+    }
+}
 
 std::string typeName(const Json& value) {
     switch (value.type()) {
@@ -76,15 +188,17 @@ Real JsonObject::positive(const std::string& key, Real fallback, bool allowZero)
     return x;
 }
 
-int JsonObject::integer(const std::string& key, int fallback, int minimum) {
+int JsonObject::integer(const std::string& key, int fallback, int minimum, int maximum) {
     const Json* v = find(key);
     if (v == nullptr)
         return fallback;
     if (!v->is_number_integer())
         failAt(pathOf(key), "expected an integer, got ", typeName(*v), " ", v->dump());
     const long long x = v->get<long long>();
-    if (x < minimum || x > 1'000'000'000)
-        failAt(pathOf(key), "must be >= ", minimum, " (got ", x, ")");
+    if (x < minimum || x > maximum) {
+        failAt(pathOf(key), "must be >= ", minimum, x > maximum ? " and <= " : "",
+               x > maximum ? std::to_string(maximum) : "", " (got ", x, ")");
+    }
     return static_cast<int>(x);
 }
 

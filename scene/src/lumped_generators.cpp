@@ -11,7 +11,7 @@
 namespace tumble::cli {
 namespace {
 
-constexpr long long kMaxNodes = 1'000'000;  ///< a larger net is surely a typo
+constexpr int kMaxNodes = 1'000'000;  ///< a larger net is surely a typo
 
 NodeDef parseNode(JsonObject o, const Materials& materials) {
     NodeDef node;
@@ -54,9 +54,7 @@ StringDef parseString(JsonObject& o, const Materials& materials) {
         failAt(o.pathOf("end"), "must differ from \"start\": the segments would have no length");
     d.fixedStart = o.boolean("fixedStart", d.fixedStart);
     d.fixedEnd = o.boolean("fixedEnd", d.fixedEnd);
-    d.count = o.integer("count", d.count, d.fixedStart || d.fixedEnd ? 1 : 2);
-    if (d.count > kMaxNodes)
-        failAt(o.pathOf("count"), "at most ", kMaxNodes, " nodes");
+    d.count = o.integer("count", d.count, d.fixedStart || d.fixedEnd ? 1 : 2, kMaxNodes);
     d.restLengthRatio = o.positive("restLengthRatio", d.restLengthRatio);
     d.velocity = o.vec3("velocity", d.velocity);
     d.node = parseNode(o.object("node"), materials);
@@ -66,8 +64,8 @@ StringDef parseString(JsonObject& o, const Materials& materials) {
 
 NetDef parseNet(JsonObject& o, const Materials& materials) {
     NetDef d;
-    d.rows = o.integer("rows", d.rows, 0);
-    d.columns = o.integer("columns", d.columns, 0);
+    d.rows = o.integer("rows", d.rows, 0, kMaxNodes);
+    d.columns = o.integer("columns", d.columns, 0, kMaxNodes);
     if (d.rows < 2 || d.columns < 2)
         failAt(o.path(), "a net needs at least 2 x 2 nodes (got rows x columns = ", d.rows, " x ",
                d.columns, ")");
@@ -195,7 +193,7 @@ void buildLumped(const Scene& scene, const LumpedSpec& spec, BuiltScene& built) 
         for (const auto& [k, velocity] : spec.excite)
             world.setLinearVelocity(made.nodes[static_cast<std::size_t>(k)], velocity);
     } catch (const InvalidArgument& e) {
-        fail(scene.source, ": ", spec.path, " (\"", spec.name, "\"): ", e.what());
+        fail(located(scene, spec.path), " (\"", spec.name, "\"): ", e.what());
     }
     built.springs.insert(built.springs.end(), made.threads.begin(), made.threads.end());
 }

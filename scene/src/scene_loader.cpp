@@ -13,14 +13,19 @@
 namespace tumble::cli {
 namespace {
 
+/// Upper bounds of the solver's counts (docs/scene-format.md): far above any useful value, low
+/// enough that a typo is refused rather than run for days (10^9 iterations was).
+constexpr int kMaxIterations = 10'000;
+constexpr int kMaxSubsteps = 1'000;
+
 std::string indexPath(const std::string& path, std::size_t i) {
     return path + "[" + std::to_string(i) + "]";
 }
 
 SolverSettings parseSolver(JsonObject o) {
     SolverSettings s;
-    s.iterations = o.integer("iterations", s.iterations, 1);
-    s.relaxIterations = o.integer("relaxIterations", s.relaxIterations, 0);
+    s.iterations = o.integer("iterations", s.iterations, 1, kMaxIterations);
+    s.relaxIterations = o.integer("relaxIterations", s.relaxIterations, 0, kMaxIterations);
     s.tolerance = o.positive("tolerance", s.tolerance, true);
     s.relaxation = o.number("relaxation", s.relaxation);
     const std::string friction = o.choice("friction", "coupled", {"coupled", "box"});
@@ -45,7 +50,7 @@ SolverSettings parseSolver(JsonObject o) {
 WorldDef parseWorld(JsonObject o) {
     WorldDef w;
     w.timeStep = o.positive("timeStep", w.timeStep);
-    w.substeps = o.integer("substeps", w.substeps, 1);
+    w.substeps = o.integer("substeps", w.substeps, 1, kMaxSubsteps);
     w.gravity = o.vec3("gravity", w.gravity);
     w.contactMargin = o.positive("contactMargin", w.contactMargin, true);
     w.aabbMargin = o.positive("aabbMargin", w.aabbMargin, true);
@@ -310,15 +315,52 @@ std::vector<int> selectBodies(const Scene& scene, const std::vector<std::string>
     return out;
 }
 
-Json readJsonFile(const std::string& path) {
+namespace {
+
+/// The assignment of `overrides` that set the value at `path` (loader notation,
+/// "bodies[0].position"), or null.
+const std::string* overrideOf(const std::vector<std::string>& overrides, const std::string& path) {
+    for (const std::string& assignment : overrides) {
+        std::string key;  // "bodies.0.position" -> "bodies[0].position"
+        std::stringstream segments(assignment.substr(0, assignment.find('=')));
+        for (std::string part; std::getline(segments, part, '.');) {
+            const bool index = !part.empty() && part.find_first_not_of("0123456789") == part.npos;
+            key += index ? "[" + part + "]" : (key.empty() ? "" : ".") + part;
+        }
+        if (path.rfind(key, 0) == 0 &&
+            (path.size() == key.size() || path[key.size()] == '.' || path[key.size()] == '['))
+            return &assignment;
+    }
+    return nullptr;
+}
+
+/// The path of the file's key that an API refusal names: the engine's messages start with the
+/// definition's field ("BodyDef.linearVelocity = ..."), and the file's keys are named after those
+/// fields. `path` itself when the message names none the file has.
+std::string fieldPath(const Scene& scene, const std::string& path, const std::string& message,
+                      const std::string& definition) {
+    if (message.rfind(definition, 0) != 0)
+        return path;
+    const std::size_t end = message.find_first_of(" =:.", definition.size());
+    const std::string key = path + "." + message.substr(definition.size(), end - definition.size());
+    return scene.lines.count(key) != 0 ? key : path;
+}
+
+}  // namespace
+
+Json readJsonFile(const std::string& path, JsonLines* lines) {
     std::ifstream in(path, std::ios::binary);
     if (!in)
         fail(path, ": cannot open the file");
     std::stringstream buffer;
     buffer << in.rdbuf();
     const std::string text = buffer.str();
+    JsonLines scratch;
+    JsonLines& where = lines != nullptr ? *lines : scratch;
     try {
-        return Json::parse(text);
+        return parseJson(text, where);
+    } catch (const JsonError& e) {  // a duplicate key
+        fail(path, ":", lineOf(where, e.path()), ": ", e.what());
     } catch (const Json::parse_error& e) {
         // nlohmann gives a byte offset (1-based, one past the offending byte); people want lines.
         const std::size_t end = std::min<std::size_t>(e.byte == 0 ? 0 : e.byte - 1, text.size());
@@ -427,16 +469,34 @@ Scene loadScene(const std::string& nameOrFile, const std::vector<std::string>& o
                  "; a file must end in .json)");
         }
     }
-    Json document = readJsonFile(path);
+    JsonLines lines;
+    Json document = readJsonFile(path, &lines);
+    // Before any option is applied: an option given to a document that is no scene would be
+    // blamed for it.
+    if (!document.is_object())
+        fail(path, ":", lineOf(lines, ""), ": (top level): a scene is a JSON object {...}, got ",
+             typeName(document));
     for (const std::string& o : overrides)
         applyOverride(document, o);
     try {
         Scene scene = parseScene(document, fs::path(path).stem().string());
         scene.source = path;
+        scene.lines = std::move(lines);
         return scene;
+    } catch (const JsonError& e) {
+        if (const std::string* set = overrideOf(overrides, e.path()))
+            fail(path, ": ", e.what(), " (the value of --set ", *set, ")");
+        fail(path, ":", lineOf(lines, e.path()), ": ", e.what());
     } catch (const InvalidArgument& e) {
         fail(path, ": ", e.what());
     }
+}
+
+std::string located(const Scene& scene, const std::string& path) {
+    std::string out = scene.source;
+    if (const int line = lineOf(scene.lines, path); line > 0)
+        out.append(":").append(std::to_string(line));
+    return out.append(": ").append(path);
 }
 
 BuiltScene buildScene(const Scene& scene) {
@@ -472,7 +532,8 @@ BuiltScene buildScene(const Scene& scene) {
             built.bodies.push_back(body);
             built.gravityScale.push_back(spec.def.gravityScale);
         } catch (const InvalidArgument& e) {
-            fail(scene.source, ": ", spec.path, " (\"", spec.name, "\"): ", e.what());
+            fail(located(scene, fieldPath(scene, spec.path, e.what(), "BodyDef.")), " (\"",
+                 spec.name, "\"): ", e.what());
         }
     }
     buildConnections(scene, built);

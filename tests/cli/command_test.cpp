@@ -3,14 +3,18 @@
 
 #include <gtest/gtest.h>
 
+#include <cctype>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "cli_helpers.h"
+#include "run.h"
 #include "tumble/scene/scene.h"
 
 namespace fs = std::filesystem;
@@ -190,7 +194,8 @@ TEST(Command, WarningsGoToStderrAndTheSummary) {
 
 struct BadFile {
     const char* file;
-    const char* message;  ///< must appear in the error, JSON path included
+    const char* message;         ///< must appear in the error, JSON path included
+    const char* time = nullptr;  ///< --time, when the case needs an option given
 };
 
 class BadInput : public testing::TestWithParam<BadFile> {};
@@ -198,12 +203,19 @@ class BadInput : public testing::TestWithParam<BadFile> {};
 TEST_P(BadInput, IsRefusedWithItsPathStatusTwoAndNothingWritten) {
     const fs::path dir = scratch(std::string("bad_") + GetParam().file);
     const fs::path summary = dir / "s.json", picture = dir / "p.svg", record = dir / "r.csv";
-    const Outcome o =
-        tumbleRun({"run", kFixtures + "/bad/" + GetParam().file, "--summary", summary.string(),
-                   "--picture", picture.string(), "--record", record.string()});
+    std::vector<std::string> args{"run",       kFixtures + "/bad/" + GetParam().file,
+                                  "--summary", summary.string(),
+                                  "--picture", picture.string(),
+                                  "--record",  record.string()};
+    if (GetParam().time != nullptr)
+        args.insert(args.end(), {"--time", GetParam().time});
+    const Outcome o = tumbleRun(args);
     EXPECT_EQ(o.status, 2);
     EXPECT_NE(o.err.find(GetParam().message), std::string::npos) << o.err;
-    EXPECT_NE(o.err.find(GetParam().file), std::string::npos) << "names the file: " << o.err;
+    const std::size_t file = o.err.find(std::string(GetParam().file) + ":");
+    ASSERT_NE(file, std::string::npos) << "names the file: " << o.err;
+    EXPECT_TRUE(std::isdigit(o.err[file + std::strlen(GetParam().file) + 1]))
+        << "and the line: " << o.err;
     EXPECT_FALSE(fs::exists(summary));
     EXPECT_FALSE(fs::exists(picture));
     EXPECT_FALSE(fs::exists(record));
@@ -241,7 +253,30 @@ INSTANTIATE_TEST_SUITE_P(
         BadFile{"negative_drag.json", "bodies[0].drag.linear: must be >= 0 (got -0.1)"},
         BadFile{"missing_material.json", "bodies[0].shapes[0].material: no material named"},
         BadFile{"dynamic_half_space.json", "bodies[0] (\"a\"): ShapeDef.geometry is a half-space"},
-        BadFile{"bad_choice.json", "world.solver.friction: \"anisotropic\" is not one of"}),
+        BadFile{"bad_choice.json", "world.solver.friction: \"anisotropic\" is not one of"},
+        // Used to run 10^9 PGS sweeps per step: hung.
+        BadFile{"solver_iterations.json",
+                "solver_iterations.json:5: world.solver.iterations: "
+                "must be >= 1 and <= 10000 (got 1000000000)"},
+        // Used to blame `--set duration`, the option --time stands for, and not name the file.
+        BadFile{"top_level_array.json",
+                "top_level_array.json:1: (top level): a scene is a JSON object {...}, got an array",
+                "0.1"},
+        // Used to keep the last of the two silently.
+        BadFile{"duplicate_key.json",
+                "duplicate_key.json:8: bodies[0].position: key given twice "
+                "in one object (lines 6 and 8)"},
+        // Used to be accepted, the velocity dropped, though World::setLinearVelocity refuses it.
+        BadFile{"static_velocity.json",
+                "static_velocity.json:7: bodies[0].linearVelocity "
+                "(\"ground\"): BodyDef.linearVelocity = "},
+        // Used to run "ok" with null energies in the summary.
+        BadFile{"huge_position.json",
+                "huge_position.json:6: bodies[0].position (\"ball\"): the "
+                "body's energy at the start is not a finite number"},
+        BadFile{"huge_velocity.json",
+                "huge_velocity.json:7: bodies[0].linearVelocity (\"ball\"): "
+                "the body's energy at the start is not a finite number"}),
     [](const testing::TestParamInfo<BadFile>& param) {
         std::string name = param.param.file;
         return name.substr(0, name.find('.'));
@@ -261,6 +296,66 @@ TEST(BadCommandLine, IsRefusedWithStatusTwo) {
     EXPECT_EQ(tumbleRun({"run", "stack", "--view", "diagonal", "--quiet"}).status, 2);
     EXPECT_EQ(tumbleRun({"run", "stack", "--trace", "99", "--quiet"}).status, 2);
     EXPECT_EQ(tumbleRun({"run", "stack", "--summary", "/nonexistent/dir/s.json"}).status, 2);
+}
+
+TEST(BadCommandLine, ACountAboveItsBoundIsRefusedNamingTheOptionThatGaveIt) {
+    for (const std::vector<std::string>& option :
+         {std::vector<std::string>{"--iterations", "1000000000"},
+          std::vector<std::string>{"--set", "world.solver.iterations=1000000000"},
+          std::vector<std::string>{"--set", "world.substeps=100000"}}) {
+        std::vector<std::string> args{"run", "stack", "--quiet"};
+        args.insert(args.end(), option.begin(), option.end());
+        const Outcome o = tumbleRun(args);
+        EXPECT_EQ(o.status, 2) << option[1];
+        EXPECT_NE(o.err.find("(the value of --set world."), std::string::npos) << o.err;
+        EXPECT_NE(o.err.find(" and <= "), std::string::npos) << o.err;
+    }
+}
+
+TEST(JsonLines, EveryKeyAndElementHasTheLineItIsOn) {
+    tumble::cli::JsonLines lines;
+    const tumble::cli::Json doc = tumble::cli::parseJson(R"({
+  "a": 1,
+  "b": [2
+        , {"c": true},
+        "d"],
+  "e": {"f": 3.5
+  }
+})",
+                                                         lines);
+    EXPECT_EQ(doc["b"][1]["c"], true);
+    const std::vector<std::pair<std::string, int>> expected{{"", 1},     {"a", 2},    {"b", 3},
+                                                            {"b[0]", 3}, {"b[1]", 4}, {"b[1].c", 4},
+                                                            {"b[2]", 5}, {"e", 6},    {"e.f", 6}};
+    EXPECT_EQ(lines.size(), expected.size());
+    for (const auto& [path, line] : expected)
+        EXPECT_EQ(tumble::cli::lineOf(lines, path), line) << path;
+    // A value not in the file (a required key) takes the line of what holds it.
+    EXPECT_EQ(tumble::cli::lineOf(lines, "b[1].missing"), 4);
+    EXPECT_EQ(tumble::cli::lineOf(lines, "e.f.g[3]"), 6);
+}
+
+TEST(JsonLines, AKeyGivenTwiceIsRefusedAtAnyDepthButNotAcrossObjects) {
+    tumble::cli::JsonLines lines;
+    EXPECT_NO_THROW(
+        tumble::cli::parseJson(R"([{"a": 1}, {"a": 2}, {"b": {"a": 3}, "a": 4}])", lines));
+    try {
+        tumble::cli::parseJson("{\"x\": [{\"a\": 1,\n \"a\": 1}]}", lines);
+        ADD_FAILURE() << "accepted";
+    } catch (const tumble::cli::JsonError& e) {
+        EXPECT_EQ(e.path(), "x[0].a");
+        EXPECT_NE(std::string(e.what()).find("lines 1 and 2"), std::string::npos) << e.what();
+    }
+}
+
+TEST(Summary, NonFiniteFiguresAreNamedAndWarnedOf) {
+    tumble::cli::Summary s;
+    EXPECT_TRUE(tumble::cli::nonFiniteFigures(s).empty());
+    s.end.kinetic = std::numeric_limits<double>::infinity();
+    s.lastResidual = std::numeric_limits<double>::quiet_NaN();
+    const std::vector<std::string> expected{"lastSolverResidual", "energy.end.kinetic",
+                                            "energy.end.total"};
+    EXPECT_EQ(tumble::cli::nonFiniteFigures(s), expected);
 }
 
 TEST(Override, WalksObjectsAndArraysAndParsesJsonValues) {

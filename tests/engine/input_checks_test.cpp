@@ -49,6 +49,19 @@ TEST(InputChecks, MassIsIgnoredOnStaticBody) {
     EXPECT_NO_THROW(world.createBody(def));
 }
 
+// createBody applies the rule World::setLinearVelocity does: a static body never moves. It used to
+// take the velocity and drop it unseen (and so did scene files, which go through createBody).
+TEST(InputChecks, StaticBodyWithAVelocity) {
+    expectBodyRefused(BodyDef{.type = BodyType::Static, .linearVelocity = Vec3(1, 0, 0)},
+                      "BodyDef.linearVelocity = ");
+    expectBodyRefused(BodyDef{.type = BodyType::Static, .angularVelocity = Vec3(0, 0, 1)},
+                      "BodyDef.angularVelocity = ");
+    World world;
+    EXPECT_NO_THROW(world.createBody(BodyDef{.type = BodyType::Static}));
+    EXPECT_NO_THROW(
+        world.createBody(BodyDef{.type = BodyType::Kinematic, .linearVelocity = Vec3(1, 0, 0)}));
+}
+
 TEST(InputChecks, UnphysicalInertia) {
     BodyDef def;
     def.mass.inertia = Vec3(1, 1, -1).asDiagonal();

@@ -303,6 +303,30 @@ TEST(Sleep, LongBodyTurningSlowlyAndSmallBodySpinningFastStayAwake) {
         << "the loaded beam lost its extent";
 }
 
+// A 1 kg body hangs from a world point on a spring, released at the spring's rest length; the
+// spring's implicit step damps the bounce. It used to fall asleep (k = 36 N/m) at 1.008 times the
+// static deflection, tension 9.888 N against a weight of 9.81 N: slow enough to count as still,
+// but out of balance. It must sleep in balance: stretched by m g / k to 0.1 %. (With a damper the
+// rule leaves c v / k, v below linearSleepVelocity: docs/ARCHITECTURE.md.)
+TEST(Sleep, BodyOnASpringSleepsOnlyInBalance) {
+    for (const Real k : {36.0, 100.0, 400.0}) {
+        World world;
+        const BodyId body = world.createBody(BodyDef{.position = Vec3(0, 0, -1)});
+        SpringDef def;  // from the body's origin to the world's
+        def.bodyA = body;
+        def.restLength = 1;
+        def.stiffness = k;
+        const SpringId spring = world.createSpring(def);
+        const Real weight = world.settings().gravity.norm();  // m g, m = 1 kg
+        const int steps = stepUntilAsleep(world, body, 120 * 60);
+        ASSERT_GT(steps, 0) << "k = " << k << ": it must sleep once settled";
+        const Real stretch = -world.position(body).z() - 1;
+        EXPECT_NEAR(stretch / (weight / k), 1, 1e-3)
+            << "k = " << k << ", asleep at t = " << world.time();
+        EXPECT_NEAR(world.springState(spring).tension / weight, 1, 1e-3) << "k = " << k;
+    }
+}
+
 TEST(Sleep, StackOfFiveSleepsAsOneIslandAndWakingTheTopWakesAll) {
     World world;
     addGround(world);

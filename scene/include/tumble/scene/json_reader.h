@@ -4,6 +4,7 @@
 /// silently ignored). Every error is an InvalidArgument whose message starts with the JSON path
 /// of the offending value, e.g. `bodies[3].shapes[0].halfExtents: ...`.
 
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -17,6 +18,31 @@
 namespace tumble::cli {
 
 using Json = nlohmann::json;
+
+/// What failAt throws: an InvalidArgument that also carries the JSON path of the value it refuses,
+/// so that the loader can add the line of the file it came from.
+class JsonError : public InvalidArgument {
+public:
+    JsonError(std::string path, const std::string& message)
+        : InvalidArgument(message), path_(std::move(path)) {}
+    const std::string& path() const { return path_; }
+
+private:
+    std::string path_;
+};
+
+/// The line (1-based) of each value of a document by its JSON path ("" the root,
+/// "bodies[2].position"): the line of its key, or where it starts for an array element or the
+/// root.
+using JsonLines = std::map<std::string, int>;
+
+/// Parses JSON text and records the line of every value. A key given twice in one object is
+/// refused (JsonError at its path, naming both lines): the last one would silently win. Syntax
+/// errors are nlohmann's exceptions.
+Json parseJson(const std::string& text, JsonLines& lines);
+
+/// The line of `path`, else of the nearest value that holds it; 0 when none is known.
+int lineOf(const JsonLines& lines, std::string path);
 
 /// "number", "string", "array"... as a person would say it.
 std::string typeName(const Json& value);
@@ -42,7 +68,8 @@ public:
     Real number(const std::string& key);  ///< required
     /// A number > 0 (or >= 0 when allowZero); the fallback is not checked.
     Real positive(const std::string& key, Real fallback, bool allowZero = false);
-    int integer(const std::string& key, int fallback, int minimum);
+    /// An integer in [minimum, maximum].
+    int integer(const std::string& key, int fallback, int minimum, int maximum);
     bool boolean(const std::string& key, bool fallback);
     std::string string(const std::string& key, const std::string& fallback);
     /// One of `choices`.
@@ -76,7 +103,7 @@ void failAt(const std::string& path, Parts&&... parts) {
     std::ostringstream out;
     out << (path.empty() ? std::string("(top level)") : path) << ": ";
     (out << ... << std::forward<Parts>(parts));
-    throw InvalidArgument(out.str());
+    throw JsonError(path, out.str());
 }
 
 }  // namespace tumble::cli

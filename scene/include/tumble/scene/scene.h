@@ -75,6 +75,7 @@ struct Scene {
     std::string name;  ///< file stem or built-in name
     std::string description;
     std::string source;  ///< the file it came from, for messages
+    JsonLines lines;     ///< the line of each value of that file, for messages
     WorldDef world;
     Real duration = 5;  ///< simulated time (s), > 0
     std::vector<BodySpec> bodies;
@@ -103,8 +104,9 @@ Scene parseScene(const Json& document, const std::string& name);
 std::vector<int> selectBodies(const Scene& scene, const std::vector<std::string>& items,
                               const std::string& where);
 
-/// Reads a JSON file; a syntax error names the file, line and column.
-Json readJsonFile(const std::string& path);
+/// Reads a JSON file, recording the line of each value in `lines` when given; a syntax error
+/// names the file, line and column, a key given twice in one object its line.
+Json readJsonFile(const std::string& path, JsonLines* lines = nullptr);
 
 /// Applies "dotted.path=value" to a document: the value is parsed as JSON when it can be
 /// (numbers, true, [1,2,3]) and taken as a string otherwise; numeric segments index arrays;
@@ -120,6 +122,10 @@ std::vector<std::string> builtinScenes(const std::string& directory);
 /// Resolves a built-in name or a file path, reads it, applies the overrides and parses it.
 Scene loadScene(const std::string& nameOrFile, const std::vector<std::string>& overrides,
                 const std::string& directory);
+
+/// "file:line: path" of a value of the scene's file, for messages after parsing ("file: path"
+/// when the line is not known).
+std::string located(const Scene& scene, const std::string& path);
 
 /// Creates the world, bodies and shapes. World refusals are re-thrown with the body's path.
 BuiltScene buildScene(const Scene& scene);
