@@ -84,6 +84,14 @@ struct World::Impl {
         return m.center - m.orientation * bodies.inertia[index].localCenter;
     }
 
+    // A body's angular velocity after an angular impulse (world frame, N m s).
+    Vec3 angularVelocityAfter(std::uint32_t index, const Vec3& impulse) const {
+        const BodyMotion& m = bodies.motion[index];
+        const Mat3 rotation = m.orientation.toRotationMatrix();
+        return m.angularVelocity + rotation * (bodies.inertia[index].inverseInertiaLocal *
+                                               (rotation.transpose() * impulse));
+    }
+
     // Dynamic bodies only; forces on static and kinematic bodies are ignored by design. A
     // pushed body wakes.
     BodyForces* forcesOf(BodyId id) {
@@ -172,26 +180,33 @@ struct World::Impl {
         bodies.savePreviousMotion();
     }
 
-    // Checks the substep's new state. On a non-finite body restores the state from before the
-    // step (before its first substep); sleeping and static bodies did not move: only the awake
-    // ones are visited.
+    // Checks the substep's new state: a body that is not finite, or whose bounding box (swept
+    // over the next step, fattened) overflows although its state is finite, fails the step. The
+    // state from before the step (before its first substep) then comes back; sleeping and
+    // static bodies did not move: only the awake ones are visited.
     StepStatus checkFinite(const StepContext& context) {
+        StepStatus status;
         for (const std::uint32_t i : bodies.awake) {
             if (!isFinite(bodies.motion[i])) {
-                bodies.restorePreviousMotion();  // the substep's start
-                if (stepStartCount > 0) {
-                    for (std::size_t k = 0; k < stepStartCount; ++k) {
-                        bodies.motion[bodies.awake[k]] = stepStart[k];
-                        bodies.previousMotion[bodies.awake[k]] = stepStart[k];
-                    }
-                    stepStartCount = 0;
-                    contacts.refreshBounds(shapes, bodies, context);  // earlier substeps moved them
-                }
-                return {StepStatus::Code::NonFiniteState, bodies.idAt(i), SpringId{}};
+                status = {StepStatus::Code::NonFiniteState, bodies.idAt(i), SpringId{}};
+                break;
             }
         }
+        if (status.ok()) {
+            const std::uint32_t overflow = contacts.refreshBounds(shapes, bodies, context);
+            if (overflow == ContactManager::kNoBody)
+                return status;
+            status = {StepStatus::Code::Overflow, bodies.idAt(overflow), SpringId{}};
+        }
+        bodies.restorePreviousMotion();  // the substep's start
+        for (std::size_t k = 0; k < stepStartCount; ++k) {
+            bodies.motion[bodies.awake[k]] = stepStart[k];
+            bodies.previousMotion[bodies.awake[k]] = stepStart[k];
+        }
+        stepStartCount = 0;
+        // Earlier substeps moved the boxes, and an overflow left some tight boxes half-updated.
         contacts.refreshBounds(shapes, bodies, context);
-        return {};
+        return status;
     }
 
     // After the last substep of a successful step: previousMotion goes back to the step's start
