@@ -18,12 +18,16 @@
 namespace tumble {
 namespace {
 
+void addGround(World& world) {
+    const BodyId ground = world.createBody(BodyDef{.type = BodyType::Static});
+    world.createShape(ground, ShapeDef{.geometry = HalfSpace{}});
+}
+
 TEST(Overflow, BoxAtTheLargestSpeedEndsItsStepWithAStatusAndKeepsItsState) {
     // Issue 20: at step 107 step() threw "SweepAndPrune::move: box = [...] .. [inf ...] must be
     // finite": the position was still finite, its box swept over the step was not.
     World world;
-    const BodyId ground = world.createBody(BodyDef{.type = BodyType::Static});
-    world.createShape(ground, ShapeDef{.geometry = HalfSpace{}});
+    addGround(world);
     const BodyId box = world.createBody(BodyDef{.position = Vec3(0, 0, 1)});
     world.createShape(box, ShapeDef{.geometry = Box{}});
     world.setLinearVelocity(box, Vec3(1e308, 0, 0));
@@ -33,6 +37,7 @@ TEST(Overflow, BoxAtTheLargestSpeedEndsItsStepWithAStatusAndKeepsItsState) {
         ASSERT_NO_THROW(status = world.step()) << "step " << step;
         if (!status.ok()) {
             failedAt = step;
+            std::printf("overflow: the 1e308 m/s box's step %d failed\n", step);
             EXPECT_EQ(status.code, StepStatus::Code::Overflow);
             EXPECT_EQ(status.body, box);
         }
@@ -57,8 +62,7 @@ struct Scene {
     JointId hinge;
 
     Scene() {
-        const BodyId ground = world.createBody(BodyDef{.type = BodyType::Static});
-        world.createShape(ground, ShapeDef{.geometry = HalfSpace{}});
+        addGround(world);
         box = world.createBody(BodyDef{.position = Vec3(0, 0, 0.5)});
         world.createShape(box, ShapeDef{.geometry = Box{}});
         sphere = world.createBody(BodyDef{.position = Vec3(2, 0, 0.5)});
