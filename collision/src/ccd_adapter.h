@@ -13,11 +13,14 @@
 ///   vertices; the edge-pair loop is O(edges A x edges B), so for 50- and 100-point hulls it is
 ///   about 2x and 2.5x EPA's time.
 /// - a cylinder in the pair (no finite axis set): libccd is asked (EPA by default) for the
-///   direction, the depth is measured exactly along it (the overlap of the support extents) and
-///   the direction refined by GJK on the pair moved apart. The depth is then never shallower than
-///   the true one, and deeper only when EPA stops on a face of the Minkowski difference that is
-///   not the nearest and the GJK refinement cannot leave it (not measured for cylinders: there is
-///   no closed-form reference).
+///   direction, the depth is measured exactly along it (the overlap of the support extents),
+///   the flat faces' normals (box and hull faces, cylinder caps) are measured too and the
+///   shallowest kept -- at exact touch EPA's direction is arbitrary -- and that direction is
+///   refined by GJK on the pair moved apart. Cores within 1e-6 m go the same way, as GJK's
+///   closest-point direction on a curved rim is noise that close. The depth is then never
+///   shallower than the true one, and deeper only when no start lies near the nearest face of
+///   the Minkowski difference and the GJK refinement cannot reach it (measured only on faces,
+///   face_touch_test: exact there; elsewhere there is no closed-form reference).
 /// ccd_adapter.cpp is the only door to libccd: no other file includes its headers.
 ///
 /// EPA over MPR (measured on 5,000 random shallow box overlaps, gjk_epa_test): EPA's depth matches

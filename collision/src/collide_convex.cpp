@@ -3,7 +3,8 @@
 /// the features of both shapes along that normal.
 ///
 /// Each shape offers the feature most aligned with the normal (A along +n, B along -n): a box or
-/// hull face, a cylinder cap polygon (a regular kCapVertexCount-gon inscribed in the rim), a
+/// hull face, a cylinder cap polygon (a regular kCapVertexCount-gon inscribed in the rim, plus
+/// the rim's deepest point when the cap is tilted), a
 /// cylinder side line or a capsule segment (when nearly perpendicular to the normal), else a
 /// single point. When a face lies within kFaceCos of the normal (kCapCos when a cylinder cap
 /// takes part), the better aligned face is the reference and the other feature is clipped
@@ -36,9 +37,15 @@ constexpr Real kFaceCos = 0.9998;
 /// then keep a supporting polygon instead of rocking on one rim point. The manifold keeps the
 /// query normal, and each point's separation is measured along it (clipToManifold's
 /// contactNormal), so the looser face test does not tilt the normal or change the depth. The
-/// inscribed cap polygon makes a rim contact shallower by at most
-/// r (1 - cos(pi / kCapVertexCount)) sin(15 deg) = 0.5 % of r.
+/// inscribed cap polygon alone would make a rim contact shallower by up to
+/// r (1 - cos(pi / kCapVertexCount)) sin(15 deg) = 0.5 % of r, so the rim's deepest point joins
+/// it (capFeature).
 constexpr Real kCapCos = 0.9659;
+/// A cap's deepest rim point along the normal joins its polygon when it lies more than this (m)
+/// beyond the chord of its two neighbouring vertices: the manifold then has the true depth to
+/// this. Below it, near-parallel caps keep the fixed polygon, whose vertices do not wander with
+/// rounding in the tilt's direction (stable ids for warm starting a stack).
+constexpr Real kRimDepthGain = 1e-8;
 /// A segment (capsule core, cylinder side line) counts as lying across the normal when
 /// |sin(angle to the plane)| <= this.
 constexpr Real kSegmentSin = 0.02;
@@ -107,23 +114,44 @@ void boxFeature(const Box& box, const Transform& pose, const Vec3& d, Feature& f
     f.setFace(pose, sign * Vec3::Unit(axis), d, static_cast<std::uint32_t>(2 * axis + (sign > 0)));
 }
 
+/// A cylinder cap's polygon: the rim vertices, counter-clockwise from outside, and the rim's
+/// deepest point along d inserted between its two neighbours when it lies more than
+/// kRimDepthGain beyond their chord.
+void capFeature(const Cylinder& cylinder, const Transform& pose, const Vec3& d, Feature& f) {
+    const Real h = cylinder.halfLength, r = cylinder.radius;
+    const bool top = d.z() > 0;
+    const Real radial = std::hypot(d.x(), d.y());
+    const Real step = 2 * std::numbers::pi / kCapVertexCount;
+    Real phase = std::atan2(d.y(), d.x());
+    if (phase < 0)
+        phase += 2 * std::numbers::pi;
+    const int below = std::min(kCapVertexCount - 1, static_cast<int>(phase / step));
+    const Real nearest =
+        std::max(std::cos(phase - below * step), std::cos((below + 1) * step - phase));
+    const bool insert = r * radial * (1 - nearest) > kRimDepthGain;
+    // Walking the top cap counter-clockwise the deepest point follows vertex `below`; walking the
+    // bottom one (clockwise about +z) it follows the vertex after `below`.
+    const int insertAfter = top ? below : (below + 1) % kCapVertexCount;
+    for (int k = 0; k < kCapVertexCount; ++k) {
+        const int index = top ? k : kCapVertexCount - 1 - k;
+        const Real angle = step * index;
+        f.add(pose, Vec3(r * std::cos(angle), r * std::sin(angle), top ? h : -h),
+              static_cast<std::uint32_t>(top ? index : kCapVertexCount + index));
+        if (insert && index == insertAfter)
+            f.add(pose, Vec3(r * d.x() / radial, r * d.y() / radial, top ? h : -h), top ? 35 : 36);
+    }
+    f.setFace(pose, Vec3(0, 0, top ? 1 : -1), d, top ? 0 : 1);
+    f.isCap = true;
+}
+
 /// Cap polygon, side line or rim point. Ids: top rim vertices 0..15, bottom 16..31, side line
-/// ends 32 (bottom) and 33 (top), the rim point 34; faces: top 0, bottom 1, side 2, rim 3.
+/// ends 32 (bottom) and 33 (top), the rim point 34, a tilted cap's deepest rim point 35 (top) and
+/// 36 (bottom); faces: top 0, bottom 1, side 2, rim 3.
 void cylinderFeature(const Cylinder& cylinder, const Transform& pose, const Vec3& d, Feature& f) {
     const Real h = cylinder.halfLength, r = cylinder.radius;
     const Real radial = std::hypot(d.x(), d.y());
-    if (std::abs(d.z()) >= kCapCos) {
-        const bool top = d.z() > 0;
-        for (int k = 0; k < kCapVertexCount; ++k) {
-            const int index = top ? k : kCapVertexCount - 1 - k;  // counter-clockwise from outside
-            const Real angle = 2 * std::numbers::pi * index / kCapVertexCount;
-            f.add(pose, Vec3(r * std::cos(angle), r * std::sin(angle), top ? h : -h),
-                  static_cast<std::uint32_t>(top ? index : kCapVertexCount + index));
-        }
-        f.setFace(pose, Vec3(0, 0, top ? 1 : -1), d, top ? 0 : 1);
-        f.isCap = true;
-        return;
-    }
+    if (std::abs(d.z()) >= kCapCos)
+        return capFeature(cylinder, pose, d, f);
     const Vec3 rim(r * d.x() / radial, r * d.y() / radial, 0);  // radial > 0 here
     if (std::abs(d.z()) <= kSegmentSin) {
         f.add(pose, rim - Vec3(0, 0, h), 32);

@@ -39,9 +39,12 @@ constexpr Real kEdgeAxisMargin = 1e-12;
 /// edges). A hull with more takes the brute-force path: every edge pair by support sweeps.
 constexpr int kMaxArcEdges = 192;
 
+/// The flat faces of a core: a box's and a hull's, and a cylinder's two caps.
 int faceCount(const Shape& shape) {
     if (typeOf(shape) == ShapeType::Box)
         return 6;
+    if (typeOf(shape) == ShapeType::Cylinder)
+        return 2;
     if (const auto* hull = std::get_if<ConvexHull>(&shape))
         return static_cast<int>(hull->data->faces.size());
     return 0;
@@ -54,12 +57,17 @@ void faceAt(const Shape& shape, int k, Vec3& normal, Real& offset) {
         offset = box->halfExtents[k / 2];
         return;
     }
+    if (const auto* cylinder = std::get_if<Cylinder>(&shape)) {
+        normal = (k == 0 ? 1.0 : -1.0) * Vec3::UnitZ();
+        offset = cylinder->halfLength;
+        return;
+    }
     const HullFace& face = std::get<ConvexHull>(shape).data->faces[static_cast<std::size_t>(k)];
     normal = face.normal;
     offset = face.offset;
 }
 
-/// The interval a posed polytope core covers along a world axis (m).
+/// The interval a posed polytope or cylinder core covers along a world axis (m).
 struct Extent {
     Real low, high;
 };
@@ -75,6 +83,12 @@ Extent extentAlong(const PosedCore& core, const Vec3& axis) {
         case ShapeType::Capsule:
             radius = std::abs(local.z()) * std::get<Capsule>(*core.shape).halfLength;
             break;
+        case ShapeType::Cylinder: {
+            const auto& cylinder = std::get<Cylinder>(*core.shape);
+            radius = std::abs(local.z()) * cylinder.halfLength +
+                     cylinder.radius * std::hypot(local.x(), local.y());
+            break;
+        }
         case ShapeType::ConvexHull: {
             Real low = std::numeric_limits<Real>::infinity(), high = -low;
             for (const Vec3& vertex : std::get<ConvexHull>(*core.shape).data->vertices) {
@@ -334,6 +348,16 @@ void axisContact(const PosedCore& a, const PosedCore& b, const SeparatingAxis& a
     out.pointB = pointB - b.radius * n;
 }
 }  // namespace
+
+bool leastFaceOverlap(const PosedCore& a, const PosedCore& b, Vec3& normal, Real& depth) {
+    SeparatingAxis best;
+    faceAxes(a, b, best);
+    if (!(best.depth < std::numeric_limits<Real>::infinity()))
+        return false;
+    normal = best.normal;
+    depth = best.depth + a.radius + b.radius;
+    return true;
+}
 
 bool polytopePenetration(const PosedCore& a, const PosedCore& b, ConvexContact& out) {
     const SeparatingAxis axis = minimumOverlapAxis(a, b);

@@ -17,4 +17,11 @@ bool isPolytopeCore(const Shape& shape);
 /// all (two point cores).
 bool polytopePenetration(const PosedCore& a, const PosedCore& b, ConvexContact& out);
 
+/// For overlapping or touching cores of which at least one has flat faces (box, hull, and here
+/// also a cylinder's caps): the least overlap of the full shapes (m, radii included) over those
+/// faces' normals, and that normal (from A to B). An upper bound of the penetration depth, and
+/// the exact depth and normal whenever a face takes part in the deepest contact. False when
+/// neither core has a flat face.
+bool leastFaceOverlap(const PosedCore& a, const PosedCore& b, Vec3& normal, Real& depth);
+
 }  // namespace tumble::detail

@@ -318,7 +318,7 @@ int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, s
     for (std::uint64_t i = first + 1; i <= steps; ++i) {
         const StepStatus status = world.step();
         if (!status.ok()) {
-            s.status = "non-finite state";
+            s.status = status.code == StepStatus::Code::Overflow ? "overflow" : "non-finite state";
             for (std::size_t b = 0; b < built.bodies.size(); ++b) {
                 if (built.bodies[b] == status.body)
                     s.failedBody = static_cast<int>(b);

@@ -69,8 +69,7 @@ void ContactManager::addShape(ShapeStore& shapes, std::uint32_t slot, const Body
     ShapeRecord& shape = shapes.records[slot];
     const std::uint32_t bodyIndex = bodies.indexOf(shape.body);
     shape.bounds = boundsOf(shape.def.geometry, shapePose(shape, bodies));
-    shape.fatBounds =
-        sweptBounds(shape.bounds, bodies.motion[bodyIndex].linearVelocity, h).fattened(aabbMargin);
+    shape.fatBounds = proxyBounds(shape.bounds, bodies.motion[bodyIndex].linearVelocity, h);
     ProxyFilter filter;
     filter.category = shape.def.filter.category;
     filter.mask = shape.def.filter.mask;
@@ -99,23 +98,56 @@ void ContactManager::removeShape(ShapeStore& shapes, std::uint32_t slot, BodySto
 void ContactManager::refreshShape(ShapeStore& shapes, std::uint32_t slot, const BodyStore& bodies,
                                   Real h) {
     ShapeRecord& shape = shapes.records[slot];
-    const std::uint32_t bodyIndex = bodies.indexOf(shape.body);
     shape.bounds = boundsOf(shape.def.geometry, shapePose(shape, bodies));
-    const Aabb swept = sweptBounds(shape.bounds, bodies.motion[bodyIndex].linearVelocity, h);
+    moveProxy(shape, bodies, h);
+}
+
+// Moves the proxy when the tight box, swept over the next step, left the fat box.
+void ContactManager::moveProxy(ShapeRecord& shape, const BodyStore& bodies, Real h) {
+    const Vec3& velocity = bodies.motion[bodies.indexOf(shape.body)].linearVelocity;
+    const Aabb swept = sweptBounds(shape.bounds, velocity, h);
     if (!shape.fatBounds.contains(swept)) {
         shape.fatBounds = swept.fattened(aabbMargin);
         broadphase_.move(shape.proxy, shape.fatBounds);
     }
 }
 
-void ContactManager::refreshBounds(ShapeStore& shapes, const BodyStore& bodies,
-                                   const StepContext& context) {
+Aabb ContactManager::proxyBounds(const Aabb& tight, const Vec3& velocity, Real h) const {
+    return sweptBounds(tight, velocity, h).fattened(aabbMargin);
+}
+
+bool ContactManager::boundsFinite(const ShapeStore& shapes, const BodyStore& bodies,
+                                  std::uint32_t index, Real h) const {
+    for (std::uint32_t slot = bodies.info[index].firstShape; slot != BodyInfo::kNoShape;
+         slot = shapes.records[slot].nextInBody) {
+        const ShapeRecord& shape = shapes.records[slot];
+        const Aabb tight = boundsOf(shape.def.geometry, shapePose(shape, bodies));
+        if (!proxyBounds(tight, bodies.motion[index].linearVelocity, h).allFinite())
+            return false;
+    }
+    return true;
+}
+
+// Two passes, so that a body whose box overflows leaves the broadphase as it was: the tight
+// boxes first (each computed once), then the proxies.
+std::uint32_t ContactManager::refreshBounds(ShapeStore& shapes, const BodyStore& bodies,
+                                            const StepContext& context) {
     for (const std::uint32_t index : bodies.awake) {
+        const Vec3& velocity = bodies.motion[index].linearVelocity;
         for (std::uint32_t slot = bodies.info[index].firstShape; slot != BodyInfo::kNoShape;
              slot = shapes.records[slot].nextInBody) {
-            refreshShape(shapes, slot, bodies, context.h);
+            ShapeRecord& shape = shapes.records[slot];
+            shape.bounds = boundsOf(shape.def.geometry, shapePose(shape, bodies));
+            if (!proxyBounds(shape.bounds, velocity, context.h).allFinite())
+                return index;
         }
     }
+    for (const std::uint32_t index : bodies.awake) {
+        for (std::uint32_t slot = bodies.info[index].firstShape; slot != BodyInfo::kNoShape;
+             slot = shapes.records[slot].nextInBody)
+            moveProxy(shapes.records[slot], bodies, context.h);
+    }
+    return kNoBody;
 }
 
 void ContactManager::link(std::uint32_t slot, int side, BodyInfo& body) {

@@ -36,14 +36,27 @@ public:
     /// Takes a shape out of the broadphase and destroys its contacts at once (the body must
     /// still be alive).
     void removeShape(ShapeStore& shapes, std::uint32_t slot, BodyStore& bodies);
+    /// refreshBounds' answer when every body's boxes are finite.
+    static constexpr std::uint32_t kNoBody = 0xFFFFFFFF;
+
     /// Re-reads one shape's bounds after a teleport (setTransform) or a new pose.
     void refreshShape(ShapeStore& shapes, std::uint32_t slot, const BodyStore& bodies, Real h);
+    /// The box the broadphase holds for a shape whose tight box is `tight` on a body moving at
+    /// `velocity`: swept over the next step of `h` and fattened by aabbMargin (m). Not finite
+    /// when a huge but finite state overflows it; the broadphase refuses such a box.
+    Aabb proxyBounds(const Aabb& tight, const Vec3& velocity, Real h) const;
+    /// Whether every shape of body `index` gets a finite proxy box at the body's current state.
+    bool boundsFinite(const ShapeStore& shapes, const BodyStore& bodies, std::uint32_t index,
+                      Real h) const;
 
     /// After the bodies moved: refresh the tight bounds of the awake bodies' shapes and move the
     /// proxies whose box, swept over the next step, left their fat box. Bounds are therefore
     /// always those of the current poses (sleeping and static bodies do not move), and queries
-    /// between steps see them.
-    void refreshBounds(ShapeStore& shapes, const BodyStore& bodies, const StepContext& context);
+    /// between steps see them. Returns the index of the first awake body whose proxy box would
+    /// not be finite, and then moves no proxy (the caller restores the state and calls again);
+    /// kNoBody when all are finite.
+    std::uint32_t refreshBounds(ShapeStore& shapes, const BodyStore& bodies,
+                                const StepContext& context);
     /// Broadphase stage: update the pair set from the fat boxes.
     void updatePairs() { broadphase_.update(); }
     /// Narrowphase stage: creates and destroys contacts as broadphase pairs appear and vanish,
@@ -122,6 +135,8 @@ private:
 
     /// Creates the contact of a new broadphase pair, if its shapes may collide.
     void create(const ProxyPair& pair, const ShapeStore& shapes, BodyStore& bodies);
+    /// Moves a shape's proxy when its tight box, swept over the next step of h, left its fat box.
+    void moveProxy(ShapeRecord& shape, const BodyStore& bodies, Real h);
     /// Unlinks a contact from its bodies; its slot is reused once no list holds it.
     void destroy(std::uint32_t slot, BodyStore& bodies);
     /// The live contact of a pair, or kNone.

@@ -31,6 +31,14 @@ std::uint32_t nextWorldTag() {
     return tag;
 }
 
+// An impulse is finite (checked), but the velocity it gives may overflow: refused, as it would
+// be the state a failed step rolls back to. (An overflowing sum of forces is left to the step,
+// which reports it as a non-finite state and keeps the bodies where they were.)
+void finiteSum(const Vec3& sum, const char* what) {
+    if (!sum.allFinite())
+        fail(what, " = (", sum.x(), ", ", sum.y(), ", ", sum.z(), ") overflows: must be finite");
+}
+
 }  // namespace
 
 World::World(const WorldDef& def) : impl_(std::make_unique<Impl>()) {
@@ -151,8 +159,16 @@ void World::setTransform(BodyId id, const Vec3& position, const Quat& orientatio
     checks::finiteVector(position, "setTransform position");
     checks::unitQuaternion(orientation, "setTransform orientation");
     BodyMotion& m = impl_->bodies.motion[index];
+    const BodyMotion before = m;
     m.orientation = orientation.normalized();
     m.center = position + m.orientation * impl_->bodies.inertia[index].localCenter;
+    if (!m.center.allFinite() || !impl_->contacts.boundsFinite(impl_->shapes, impl_->bodies, index,
+                                                               impl_->settings.timeStep)) {
+        m = before;
+        fail("setTransform position = (", position.x(), ", ", position.y(), ", ", position.z(),
+             ") m: the body's centre of mass or the bounding box of a shape, swept over a step at "
+             "its velocity, must be finite there");
+    }
     // A teleport: nothing to interpolate across.
     impl_->bodies.previousMotion[index] = m;
     impl_->refreshShapesOf(index);
@@ -248,10 +264,16 @@ void World::applyLinearImpulse(BodyId id, const Vec3& impulse, const Vec3& world
     const std::uint32_t index = impl_->bodies.indexOf(id);
     if (impl_->bodies.info[index].type != BodyType::Dynamic)
         return;
-    impl_->islands.push(impl_->bodies, impl_->contacts, index);
     BodyMotion& m = impl_->bodies.motion[index];
-    m.linearVelocity += impl_->bodies.inertia[index].inverseMass * impulse;
-    applyAngularImpulse(id, (worldPoint - m.center).cross(impulse));
+    const Vec3 velocity = m.linearVelocity + impl_->bodies.inertia[index].inverseMass * impulse;
+    const Vec3 angularImpulse = (worldPoint - m.center).cross(impulse);
+    finiteSum(velocity, "applyLinearImpulse: the body's linear velocity");
+    finiteSum(angularImpulse, "applyLinearImpulse: (point - centre of mass) x impulse");
+    finiteSum(impl_->angularVelocityAfter(index, angularImpulse),
+              "applyLinearImpulse: the body's angular velocity");
+    impl_->islands.push(impl_->bodies, impl_->contacts, index);
+    m.linearVelocity = velocity;
+    applyAngularImpulse(id, angularImpulse);
 }
 
 void World::applyAngularImpulse(BodyId id, const Vec3& impulse) {
@@ -259,11 +281,10 @@ void World::applyAngularImpulse(BodyId id, const Vec3& impulse) {
     const std::uint32_t index = impl_->bodies.indexOf(id);
     if (impl_->bodies.info[index].type != BodyType::Dynamic)
         return;
+    const Vec3 velocity = impl_->angularVelocityAfter(index, impulse);
+    finiteSum(velocity, "applyAngularImpulse: the body's angular velocity");
     impl_->islands.push(impl_->bodies, impl_->contacts, index);
-    BodyMotion& m = impl_->bodies.motion[index];
-    const Mat3 rotation = m.orientation.toRotationMatrix();
-    m.angularVelocity += rotation * (impl_->bodies.inertia[index].inverseInertiaLocal *
-                                     (rotation.transpose() * impulse));
+    impl_->bodies.motion[index].angularVelocity = velocity;
 }
 
 // One step of h = N substeps of h / N. Once per step: the pre-step callback, waking what springs
@@ -339,8 +360,11 @@ StepStatus World::Impl::substep(const StepContext& context) {
     bool moved = true;  // the poses differ from those the bounds were last refreshed at
     profile.finalize += timed([&] { status = checkFinite(moved); });
     profile.bounds += timed([&] {
-        if (moved)
-            contacts.refreshBounds(shapes, bodies, context);
+        if (!moved)
+            return;
+        const StepStatus bounds = refreshBounds(context);
+        if (status.ok())
+            status = bounds;
     });
     profile.finalize += timed([&] {
         if (status.ok()) {

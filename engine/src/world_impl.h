@@ -98,6 +98,14 @@ struct World::Impl {
         return m.center - m.orientation * bodies.inertia[index].localCenter;
     }
 
+    // A body's angular velocity after an angular impulse (world frame, N m s).
+    Vec3 angularVelocityAfter(std::uint32_t index, const Vec3& impulse) const {
+        const BodyMotion& m = bodies.motion[index];
+        const Mat3 rotation = m.orientation.toRotationMatrix();
+        return m.angularVelocity + rotation * (bodies.inertia[index].inverseInertiaLocal *
+                                               (rotation.transpose() * impulse));
+    }
+
     // Dynamic bodies only; forces on static and kinematic bodies are ignored by design. A
     // pushed body wakes.
     BodyForces* forcesOf(BodyId id) {
@@ -191,26 +199,46 @@ struct World::Impl {
         bodies.savePreviousMotion();
     }
 
-    // Checks the substep's new state. On a non-finite body restores the state from before the
-    // step (before its first substep); sleeping and static bodies did not move: only the awake
-    // ones are visited. `moved` tells the bounds stage whether the poses now differ from those
-    // its last refresh saw: after a rollback only when earlier substeps had moved them.
+    // Puts the awake bodies back where the step began (before its first substep); sleeping and
+    // static bodies did not move. True when earlier substeps had moved them, so that the bounds
+    // differ from those of the restored poses.
+    bool rollBackStep() {
+        bodies.restorePreviousMotion();  // the substep's start
+        const bool moved = stepStartCount > 0;
+        for (std::size_t k = 0; k < stepStartCount; ++k) {
+            bodies.motion[bodies.awake[k]] = stepStart[k];
+            bodies.previousMotion[bodies.awake[k]] = stepStart[k];
+        }
+        stepStartCount = 0;
+        return moved;
+    }
+
+    // Checks the substep's new state; a non-finite body rolls the step back. `moved` tells the
+    // bounds stage whether the poses now differ from those its last refresh saw: after a
+    // rollback only when earlier substeps had moved them.
     StepStatus checkFinite(bool& moved) {
         for (const std::uint32_t i : bodies.awake) {
             if (!isFinite(bodies.motion[i])) {
-                bodies.restorePreviousMotion();  // the substep's start
-                moved = stepStartCount > 0;
-                if (stepStartCount > 0) {
-                    for (std::size_t k = 0; k < stepStartCount; ++k) {
-                        bodies.motion[bodies.awake[k]] = stepStart[k];
-                        bodies.previousMotion[bodies.awake[k]] = stepStart[k];
-                    }
-                    stepStartCount = 0;
-                }
+                moved = rollBackStep();
                 return {StepStatus::Code::NonFiniteState, bodies.idAt(i), SpringId{}};
             }
         }
         return {};
+    }
+
+    // The bounds stage: the awake shapes' boxes follow their bodies. A body whose box, swept over
+    // the next step and fattened, overflows although its state is finite (a speed or position
+    // near the largest double) fails the step like a non-finite one, so the broadphase never
+    // sees an infinite box.
+    StepStatus refreshBounds(const StepContext& context) {
+        const std::uint32_t overflow = contacts.refreshBounds(shapes, bodies, context);
+        if (overflow == ContactManager::kNoBody)
+            return {};
+        const BodyId body = bodies.idAt(overflow);
+        rollBackStep();
+        // Earlier substeps moved the boxes, and the failed refresh left some half-updated.
+        contacts.refreshBounds(shapes, bodies, context);
+        return {StepStatus::Code::Overflow, body, SpringId{}};
     }
 
     // After the last substep of a successful step: previousMotion goes back to the step's start

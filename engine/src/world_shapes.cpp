@@ -59,6 +59,19 @@ ShapeId World::createShape(BodyId body, const ShapeDef& def) {
         checks::massProperties(mass, "the body's mass from its shapes");
     }
 
+    const BodyMotion& motion = w.bodies.motion[bodyIndex];
+    const Transform bodyPose{w.origin(bodyIndex), motion.orientation};
+    const Transform pose{bodyPose.apply(def.localPose.position),
+                         motion.orientation * def.localPose.rotation};
+    const Aabb box = w.contacts.proxyBounds(boundsOf(def.geometry, pose), motion.linearVelocity,
+                                            w.settings.timeStep);
+    if (!box.allFinite()) {
+        fail(
+            "createShape: the shape's bounding box at its body's pose, swept over a step at the "
+            "body's velocity, must be finite (lower = (",
+            box.lower.transpose(), "), upper = (", box.upper.transpose(), ") m)");
+    }
+
     const ShapeId id = w.shapes.add(def, body);
     if (info.type == BodyType::Dynamic)
         warnIfSmallerThanSlop(w.settings.solver.slop, body, def.geometry, w.warnings);

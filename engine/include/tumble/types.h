@@ -86,6 +86,10 @@ struct StepStatus {
     enum class Code : std::uint8_t {
         Ok,
         NonFiniteState,  ///< a body's state became NaN or infinite; see `body`
+        /// A body's state is finite but too large for what is derived from it: its bounding
+        /// box, swept over the next step, overflows (a velocity or position near the largest
+        /// double); see `body`.
+        Overflow,
     };
     Code code = Code::Ok;
     BodyId body;  ///< the first offending body, when there is one

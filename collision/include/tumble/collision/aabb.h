@@ -27,6 +27,7 @@ struct Aabb {
     /// than the margin, so the broadphase need not touch it.
     Aabb fattened(Real margin) const { return {lower.array() - margin, upper.array() + margin}; }
     Vec3 center() const { return (lower + upper) / 2; }
+    bool allFinite() const { return lower.allFinite() && upper.allFinite(); }
     Real surfaceArea() const;
 };
 
