@@ -11,7 +11,8 @@
 ///   removing a shape) wakes its island; moving or destroying a static or kinematic body, or
 ///   removing one of its shapes, wakes the islands it touches.
 ///
-/// Threading: a World is not thread-safe; distinct worlds share nothing.
+/// Threading: a World is not thread-safe; distinct worlds share only the atomic counter that
+/// hands each its id tag when it is made, so they may be made and stepped on different threads.
 
 #include <cstdint>
 #include <functional>
