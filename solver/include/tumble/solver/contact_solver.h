@@ -10,11 +10,14 @@
 ///   tangent row clamped to [-mu lambda_n, mu lambda_n] on its own, as in the ESA study's Bullet)
 ///   is kept as an option; it overestimates friction by up to sqrt(2) off the tangent axes.
 /// - Restitution: Newton's law v_n+ = -e v_n-, with v_n- the approach speed measured BEFORE the
-///   solve, applied after the velocity iterations as a relative-velocity target on points that
-///   carried load; below a threshold speed contacts are inelastic. A speculative point (s > 0)
-///   that bounces would rebound from where it stands, s above the surface; the split-impulse
-///   pass moves it by -(1 + e) s instead, which puts it where a bounce at the moment of impact
-///   (t = s / |v-|) would have taken it, so bounce heights do not grow by s per impact.
+///   solve, below a threshold speed contacts are inelastic. A point that approaches faster and
+///   reaches the surface within the step demands v_n >= v_n+ in the same rows as every other
+///   contact (normal_block.h, normalTarget), so contacts that carry the impact on -- a box
+///   resting on the ground under a falling ball -- answer it together. A speculative point
+///   (s > 0) that bounces would rebound from where it stands, s above the surface; the
+///   split-impulse pass moves it by -(1 + e) s instead, which puts it where a bounce at the
+///   moment of impact (t = s / |v-|) would have taken it, so bounce heights do not grow by s per
+///   impact.
 /// - Stabilisation: split impulse by default. The velocity sweeps aim to remove a fraction of
 ///   the penetration beyond the slop within the step (a bias, as in Baumgarte); the positions are
 ///   advanced with those biased velocities. Then `relaxIterations` sweeps without the bias,
@@ -45,6 +48,7 @@
 #include <vector>
 
 #include "tumble/solver/joint_row.h"
+#include "tumble/solver/normal_islands.h"
 #include "tumble/solver/solver_body.h"
 #include "tumble/solver/spring_block.h"
 #include "tumble/solver/spring_row.h"
@@ -140,16 +144,16 @@ struct ContactConstraintPoint {
     std::array<Vec3, 2> tangentImpulseB{};  ///< IB^-1 (rB x t_k)
     /// Normal relative acceleration from the forces of this step (gravity...), (m/s^2); with it
     /// the solver finds when within the step, and how fast, a speculative point hits (see
-    /// applyRestitution). Zero when the caller does not know it.
+    /// prepare). Zero when the caller does not know it.
     Real normalAcceleration = 0;
-    Real approachSpeed = 0;     ///< v_n before the solve (m/s), negative when approaching
-    Real impactTime = 0;        ///< of the impact within the step (s), 0 when already touching
-    Real impactSpeed = 0;       ///< v_n at that time (m/s), negative when approaching
-    Real reboundSpeed = 0;      ///< v_n at the end of the step after a bounce (m/s)
-    Real maxNormalImpulse = 0;  ///< largest lambda_n during the solve: did the point carry load?
-    Real pseudoImpulse = 0;     ///< bounce position correction accumulated this step (N s)
-    Real bounceCorrection = 0;  ///< (m): a speculative point that bounced at separation s > 0
-                                ///< rebounds from the surface, not from s; see applyRestitution
+    Real approachSpeed = 0;  ///< v_n before the solve (m/s), negative when approaching
+    Real impactTime = 0;     ///< of the impact within the step (s), 0 when already touching
+    Real impactSpeed = 0;    ///< v_n at that time (m/s), negative when approaching
+    Real reboundSpeed = 0;   ///< v_n at the end of the step after a bounce (m/s)
+    bool bounces = false;    ///< Newton's law holds this step: the row is v_n >= reboundSpeed
+    /// (m): a speculative point that bounced at separation s > 0 rebounds from the surface, not
+    /// from s; the biased sweeps pull it back by this (see prepare and normalTarget)
+    Real bounceCorrection = 0;
 };
 
 struct ContactConstraint {
@@ -179,6 +183,9 @@ struct ContactConstraint {
     DiscBlock rolling;           ///< K of the relative spin about the tangents (1/(kg m^2))
     bool rollingActive = false;  ///< rolling rows solved this step
     Real angularReach = 0;       ///< farthest point from either centre of mass (m)
+    /// Group whose normal rows NormalIslands solves together, or NormalIslands::kNone: the
+    /// manifold's own block (normal_block.h).
+    std::uint32_t normalGroup = NormalIslands::kNone;
 };
 
 struct SolverStats {
@@ -215,22 +222,17 @@ private:
                   std::span<SpringRow> springs, const SolverSettings& settings, Real inverseH,
                   Real bias, int sweeps);
     Real solveVelocitySweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
-                            const SolverSettings& settings, Real inverseH, Real bias) const;
+                            const SolverSettings& settings, Real inverseH, Real bias);
     Real solveAngularFriction(SolverBody& a, SolverBody& b, ContactConstraint& c, Real omega) const;
     void solveNormals(SolverBody& a, SolverBody& b, ContactConstraint& c,
                       const SolverSettings& settings, Real inverseH, Real bias,
                       Real& largestChange) const;
-    void applyRestitution(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
-                          const SolverSettings& settings, Real inverseH, Real baumgarteBias) const;
-    void correctBounces(std::span<const SolverBody> bodies,
-                        std::span<ContactConstraint> constraints,
-                        std::vector<PseudoVelocity>& pseudo, Real inverseH,
-                        const SolverSettings& settings) const;
     Real residual(std::span<const SolverBody> bodies,
                   std::span<const ContactConstraint> constraints, const SolverSettings& settings,
                   Real inverseH, Real bias) const;
 
     SpringBlockSolver springBlock_;
+    NormalIslands islands_;       ///< normal rows of small, ill-conditioned groups, solved exactly
     bool directSprings_ = false;  ///< this step's springs go through springBlock_
     /// Split impulse's position pass for the joints (solveJointPositions) on `pseudo`.
     void correctJoints(std::span<const SolverBody> bodies, std::vector<PseudoVelocity>& pseudo,
@@ -241,8 +243,9 @@ private:
     std::vector<Mat3> geometricStiffness_;  ///< scratch of applyJointGeometricStiffness
     SpringBlockSolver jointBlock_;          ///< ball joints' point rows (jointSolve Direct)
     std::vector<SpringRow> jointBlockRows_;
-    bool directJoints_ = false;             ///< this step's ball joints go through jointBlock_
-    std::vector<SolverBody> pseudoBodies_;  ///< the joints' position pass works on these
+    bool directJoints_ = false;              ///< this step's ball joints go through jointBlock_
+    std::vector<SolverBody> pseudoBodies_;   ///< the joints' position pass works on these
+    std::vector<SolverBody> supportBodies_;  ///< scratch of addSupportAcceleration
 };
 
 }  // namespace tumble
