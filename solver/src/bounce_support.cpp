@@ -33,12 +33,15 @@ SolverBody atRest(const SolverBody& body) {
 }  // namespace
 
 void addSupportAcceleration(std::span<const SolverBody> bodies,
-                            std::span<ContactConstraint> constraints, Real h,
+                            std::span<ContactConstraint> constraints, Real h, bool warmStart,
                             std::vector<SolverBody>& scratch) {
     bool bouncy = false;
-    for (const ContactConstraint& c : constraints)
+    for (ContactConstraint& c : constraints) {
         bouncy = bouncy || c.restitution > 0;
-    if (!bouncy)
+        for (int i = 0; i < c.pointCount; ++i)
+            c.points[i].supportSpeed = 0;
+    }
+    if (!bouncy || !warmStart)
         return;
     scratch.resize(bodies.size());
     for (std::size_t i = 0; i < bodies.size(); ++i)
@@ -55,6 +58,7 @@ void addSupportAcceleration(std::span<const SolverBody> bodies,
             ContactConstraintPoint& p = c.points[i];
             const Real others = normalVelocity(scratch[c.bodyA], scratch[c.bodyB], c, p) -
                                 normalVelocity(ownA, ownB, c, p);
+            p.supportSpeed = others;
             p.normalAcceleration += others / h;
         }
     }

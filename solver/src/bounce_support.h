@@ -10,7 +10,9 @@
 /// which the warm start of this step is the best estimate of. This adds, to each point of a
 /// manifold that can bounce, the normal acceleration that the warm-start impulses of all the
 /// OTHER manifolds give its two bodies: at rest on the ground the box's own support cancels its
-/// weight exactly.
+/// weight exactly. The same support also stops the box's fall within the step, so the point's
+/// speed at the end of the step before contact, from which the impact is found, includes it too
+/// (ContactConstraintPoint::supportSpeed).
 
 #include <span>
 #include <vector>
@@ -19,11 +21,12 @@
 
 namespace tumble {
 
-/// For every constraint with restitution > 0, adds the warm-start support of the other
-/// constraints to its points' normalAcceleration (m/s^2). Uses the cached impulses as they come
-/// in; `scratch` holds the bodies' velocity changes (grows only).
+/// For every constraint with restitution > 0, sets its points' supportSpeed to the normal velocity
+/// change the warm-start impulses of the other constraints give (m/s) and adds that / h to their
+/// normalAcceleration (m/s^2); zero elsewhere, and everywhere without warm starting. Uses the
+/// cached impulses as they come in; `scratch` holds the bodies' velocity changes (grows only).
 void addSupportAcceleration(std::span<const SolverBody> bodies,
-                            std::span<ContactConstraint> constraints, Real h,
+                            std::span<ContactConstraint> constraints, Real h, bool warmStart,
                             std::vector<SolverBody>& scratch);
 
 }  // namespace tumble

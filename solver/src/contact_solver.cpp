@@ -322,8 +322,7 @@ int ContactSolver::runSweeps(std::span<SolverBody> bodies, std::span<ContactCons
 void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                             Real h, const SolverSettings& settings) {
     const bool split = settings.stabilisation == Stabilisation::SplitImpulse;
-    if (settings.warmStart)
-        addSupportAcceleration(bodies, constraints, h, supportBodies_);
+    addSupportAcceleration(bodies, constraints, h, settings.warmStart, supportBodies_);
     for (ContactConstraint& c : constraints) {
         SolverBody& a = bodies[c.bodyA];
         SolverBody& b = bodies[c.bodyB];
@@ -353,8 +352,8 @@ void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
             p.tangentMass(0, 0) = 1 / kTangent(0, 0);
             p.tangentMass(1, 1) = 1 / kTangent(1, 1);
             p.approachSpeed = relativeVelocity(a, b, p).dot(c.normal);
-            const Impact impact =
-                impactWithinStep(p.separation, p.approachSpeed, p.normalAcceleration, h);
+            const Impact impact = impactWithinStep(p.separation, p.approachSpeed + p.supportSpeed,
+                                                   p.normalAcceleration, h);
             p.impactTime = impact.time;
             p.impactSpeed = impact.speed;
             // Newton's law at the impact, then the parabola for the rest of the step; the

@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdio>
 #include <vector>
 
 #include "tumble/world.h"
@@ -78,13 +77,13 @@ Bounce bounceOnBoxes(Real boxMass, Real e, int boxes) {
     return result;
 }
 
+// Measured before restitution joined the rows: ratio 0 on a 1 kg box (the box was driven into the
+// ground at 3 m/s), 0.23 of e^2 for 100 kg. After: e^2 within 0.04 %.
 TEST(StackedImpact, BallReboundsFromBoxesRestingOnTheGround) {
     for (const int boxes : {1, 3}) {
         for (const Real mass : {0.1, 1.0, 10.0, 100.0}) {
             for (const Real e : {0.3, 0.5, 0.8}) {
                 const Bounce b = bounceOnBoxes(mass, e, boxes);
-                std::printf("boxes %d mass %g e %g ratio %.5f (%.4f) gain %.3g\n", boxes, mass, e,
-                            b.ratio, b.ratio / (e * e), b.energyGain);
                 EXPECT_NEAR(b.ratio, e * e, 0.02 * e * e)
                     << boxes << " boxes of " << mass << " kg, e = " << e;
                 EXPECT_LE(b.energyGain, 1e-9) << boxes << " boxes of " << mass << " kg, e = " << e;
@@ -119,20 +118,23 @@ Settle heavyOnLight(Real ratio, Real seconds) {
                 std::max(result.penetration, world.solverStats().deepestPenetration);
     }
     result.topSpeed = world.linearVelocity(heavy).norm();
+    result.topHeight = world.position(heavy).z();
     return result;
 }
 
+// Measured before: a relative rise of 5.7e-4 at 100:1, 2.7 at 1000:1, 0.5 at 10,000:1.
 TEST(StackedImpact, HeavyBoxOnLightBoxGainsNoEnergy) {
     for (const Real ratio : {10.0, 100.0, 1e3, 1e4, 1e5, 1e6}) {
         const Settle s = heavyOnLight(ratio, 5);
-        std::printf("ratio %g rise %.3g penetration %.4g speed %.3g\n", ratio, s.energyRise,
-                    s.penetration, s.topSpeed);
         EXPECT_LE(s.energyRise, 1e-6) << "mass ratio " << ratio;
     }
 }
 
+// Measured before the exact group solve: both boxes launched at 1.6 m/s by 0.5 s and ended side
+// by side on the ground; 10,000:1 sank 0.49 m. After: 8e-8 m of penetration at 1000:1.
 TEST(StackedImpact, ThousandToOneStackRests) {
     const Settle s = heavyOnLight(1000, 5);
+    EXPECT_NEAR(s.topHeight, 0.75, SolverSettings{}.slop + 1e-3) << "still on top";
     EXPECT_LT(s.penetration, SolverSettings{}.slop + 1e-3);
     EXPECT_LT(s.topSpeed, 1e-3);
 }

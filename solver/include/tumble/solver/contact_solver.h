@@ -147,10 +147,13 @@ struct ContactConstraintPoint {
     /// prepare). Zero when the caller does not know it.
     Real normalAcceleration = 0;
     Real approachSpeed = 0;  ///< v_n before the solve (m/s), negative when approaching
-    Real impactTime = 0;     ///< of the impact within the step (s), 0 when already touching
-    Real impactSpeed = 0;    ///< v_n at that time (m/s), negative when approaching
-    Real reboundSpeed = 0;   ///< v_n at the end of the step after a bounce (m/s)
-    bool bounces = false;    ///< Newton's law holds this step: the row is v_n >= reboundSpeed
+    /// Part of v_n that the other contacts' support gives within the step (m/s), set by prepare
+    /// (bounce_support.h); the impact is found with it, the acceleration includes it.
+    Real supportSpeed = 0;
+    Real impactTime = 0;    ///< of the impact within the step (s), 0 when already touching
+    Real impactSpeed = 0;   ///< v_n at that time (m/s), negative when approaching
+    Real reboundSpeed = 0;  ///< v_n at the end of the step after a bounce (m/s)
+    bool bounces = false;   ///< Newton's law holds this step: the row is v_n >= reboundSpeed
     /// (m): a speculative point that bounced at separation s > 0 rebounds from the surface, not
     /// from s; the biased sweeps pull it back by this (see prepare and normalTarget)
     Real bounceCorrection = 0;
