@@ -96,6 +96,7 @@ struct Settle {
     Real energyRise = 0;   // largest rise of the total energy over its start, relative
     Real penetration = 0;  // deepest penetration over the last second (m)
     Real topSpeed = 0;     // of the heavy box at the end (m/s)
+    Real topHeight = 0;    // of the heavy box's centre at the end (m)
 };
 
 // 0.5 m cubes: `ratio` kg on 1 kg on the ground, default settings, for `seconds`.
