@@ -29,6 +29,9 @@
 ///   (the bias left in the real velocity, k_erp = 0.2) is kept to reproduce the study's energy
 ///   gain at impacts.
 /// - Each manifold's normal rows are solved as one block (normal_block.h): exact, no order bias.
+///   Small groups of manifolds between bodies of very different masses, or carrying an impact,
+///   are solved as one block of all their normal rows (normal_islands.h), which PGS cannot
+///   converge (a 1000:1 stack launched itself).
 /// - Speculative contacts: a point with separation s > 0 only demands v_n >= -s / h: the bodies
 ///   may close the gap within the step but not pass it, so fast bodies do not tunnel.
 /// - Spinning and rolling friction (optional, per manifold): a rigid point contact cannot resist
