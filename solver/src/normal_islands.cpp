@@ -97,6 +97,15 @@ bool solveActiveRows(const Real* k, int n, const std::uint8_t* active, const Rea
 
 void NormalIslands::prepare(std::span<const SolverBody> bodies,
                             std::span<ContactConstraint> constraints) {
+    selectGroups(bodies, constraints);
+    buildMatrices(bodies, constraints);
+}
+
+// Union-find over the movable bodies; per group its manifolds, rows, lightest and heaviest body
+// and whether a point bounces; the groups solved here numbered in order of first appearance, and
+// each constraint marked, with its group's row count in groupBegin_[group + 1].
+void NormalIslands::selectGroups(std::span<const SolverBody> bodies,
+                                 std::span<ContactConstraint> constraints) {
     const auto bodyCount = static_cast<std::uint32_t>(bodies.size());
     parent_.resize(bodyCount);
     std::iota(parent_.begin(), parent_.end(), 0u);
@@ -153,7 +162,6 @@ void NormalIslands::prepare(std::span<const SolverBody> bodies,
         if (group != kNone)
             group = renumber[group];
     }
-    // The rows of each group in constraint order, and each group's K.
     groupBegin_.assign(groupCount_ + 1, 0);
     for (ContactConstraint& c : constraints) {
         if (c.pointCount == 0 || !(movable(bodies[c.bodyA]) || movable(bodies[c.bodyB])))
@@ -162,6 +170,11 @@ void NormalIslands::prepare(std::span<const SolverBody> bodies,
         if (c.normalGroup != kNone)
             groupBegin_[c.normalGroup + 1] += c.pointCount;
     }
+}
+
+// The rows of each group in constraint order, and each group's K.
+void NormalIslands::buildMatrices(std::span<const SolverBody> bodies,
+                                  std::span<const ContactConstraint> constraints) {
     std::partial_sum(groupBegin_.begin(), groupBegin_.end(), groupBegin_.begin());
     rows_.resize(groupBegin_.back());
     std::vector<std::uint32_t>& cursor = counts_[0];

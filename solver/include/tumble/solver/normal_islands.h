@@ -63,6 +63,9 @@ public:
                Real relaxation, Real bias, Real slop, Real inverseH);
 
 private:
+    void selectGroups(std::span<const SolverBody> bodies, std::span<ContactConstraint> constraints);
+    void buildMatrices(std::span<const SolverBody> bodies,
+                       std::span<const ContactConstraint> constraints);
     bool solveGroup(int group, const std::vector<Real>& c, std::vector<Real>& lambda);
 
     int groupCount_ = 0;
