@@ -26,14 +26,11 @@ SolverStats ConstraintSolver::solve(std::span<SolverBody> bodies,
     });
     profile_.relax =
         timed([&] { relax(bodies, constraints, springs, pseudo, settings, inverseH); });
-    profile_.restitution = timed([&] {
-        contacts_.applyRestitution(bodies, constraints, settings, h, velocityBias);
+    profile_.residual = timed([&] {
         stats.maxResidual =
             contacts_.residual(bodies, constraints, settings, inverseH, velocityBias);
     });
     profile_.positions = timed([&] {
-        if (split)
-            contacts_.correctBounces(bodies, constraints, pseudo, inverseH, settings);
         if (split && !joints.empty())
             correctJoints(bodies, pseudo, inverseH, settings);
     });
@@ -84,6 +81,12 @@ void ConstraintSolver::relax(std::span<SolverBody> bodies, std::span<ContactCons
         pseudo[i].angular = split ? bodies[i].angularVelocity : Vec3::Zero();
     }
     if (split) {
+        // The bounce's position correction is part of the push-out: the relax sweeps aim at the
+        // rebound alone, so it ends up in the pseudo-velocity (normalTarget).
+        for (ContactConstraint& c : constraints) {
+            for (int i = 0; i < c.pointCount; ++i)
+                c.points[i].bounceCorrection = 0;
+        }
         runSweeps(bodies, constraints, springs, settings, inverseH, 0, settings.relaxIterations);
         for (std::size_t i = 0; i < bodies.size(); ++i) {
             pseudo[i].linear -= bodies[i].linearVelocity;

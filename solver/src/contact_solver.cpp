@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bounce_support.h"
 #include "normal_block.h"
 #include "tumble/core/error.h"
 
@@ -14,22 +15,6 @@ using Vec2 = Eigen::Matrix<Real, 2, 1>;
 
 Vec3 relativeVelocity(const SolverBody& a, const SolverBody& b, const ContactConstraintPoint& p) {
     return b.velocityAt(p.rB) - a.velocityAt(p.rA);
-}
-
-// v_n = n . (vB + wB x rB - vA - wA x rA), with the angular parts precomputed by prepare().
-Real normalSpeed(const SolverBody& a, const SolverBody& b, const Vec3& n,
-                 const ContactConstraintPoint& p) {
-    return n.dot(b.linearVelocity - a.linearVelocity) + p.angularB.dot(b.angularVelocity) -
-           p.angularA.dot(a.angularVelocity);
-}
-
-// A normal impulse lambda n on B at the point, -lambda n on A.
-void applyNormal(SolverBody& a, SolverBody& b, const Vec3& n, const ContactConstraintPoint& p,
-                 Real lambda) {
-    a.linearVelocity -= (a.inverseMass * lambda) * n;
-    a.angularVelocity -= lambda * p.angularImpulseA;
-    b.linearVelocity += (b.inverseMass * lambda) * n;
-    b.angularVelocity += lambda * p.angularImpulseB;
 }
 
 // The impulse P acts on B at rB and -P on A at rA.
@@ -88,15 +73,6 @@ Mat3 pointMassMatrix(const SolverBody& a, const SolverBody& b, const ContactCons
     const Mat3 skewB = skew(p.rB);
     return (a.inverseMass + b.inverseMass) * Mat3::Identity() - skewA * a.inverseInertia * skewA -
            skewB * b.inverseInertia * skewB;
-}
-
-// Velocity the normal row aims at: close a speculative gap within the step but not beyond it;
-// with a bias factor (Baumgarte's k_erp, or split impulse's factor in its biased sweeps), also
-// push out that fraction of the penetration beyond the slop.
-Real normalTarget(const ContactConstraintPoint& p, Real bias, Real slop, Real inverseH) {
-    if (p.separation > 0)
-        return -p.separation * inverseH;
-    return bias * inverseH * std::max<Real>(0, -p.separation - slop);
 }
 
 struct Impact {
@@ -230,7 +206,9 @@ void checkSolverSettings(const SolverSettings& s) {
 }
 
 void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
-                            Real h, const SolverSettings& settings) const {
+                            Real h, const SolverSettings& settings) {
+    const bool split = settings.stabilisation == Stabilisation::SplitImpulse;
+    addSupportAcceleration(bodies, constraints, h, settings.warmStart, supportBodies_);
     for (ContactConstraint& c : constraints) {
         SolverBody& a = bodies[c.bodyA];
         SolverBody& b = bodies[c.bodyB];
@@ -260,17 +238,25 @@ void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
             p.tangentMass(0, 0) = 1 / kTangent(0, 0);
             p.tangentMass(1, 1) = 1 / kTangent(1, 1);
             p.approachSpeed = relativeVelocity(a, b, p).dot(c.normal);
-            const Impact impact =
-                impactWithinStep(p.separation, p.approachSpeed, p.normalAcceleration, h);
+            const Impact impact = impactWithinStep(p.separation, p.approachSpeed + p.supportSpeed,
+                                                   p.normalAcceleration, h);
             p.impactTime = impact.time;
             p.impactSpeed = impact.speed;
             // Newton's law at the impact, then the parabola for the rest of the step; the
             // step's velocity runs half a step behind it (impactWithinStep).
             p.reboundSpeed =
                 -c.restitution * impact.speed + p.normalAcceleration * (0.5 * h - impact.time);
-            p.maxNormalImpulse = 0;
-            p.pseudoImpulse = 0;
-            p.bounceCorrection = 0;
+            // Only points that approach fast and reach the surface within the step bounce.
+            p.bounces = c.restitution > 0 && impact.speed < -settings.restitutionThreshold &&
+                        (p.separation <= 0 || p.approachSpeed < -p.separation / h);
+            // Integrated with the rebound speed from where it stands, a speculative point would
+            // end s + h v+ above the surface; the bounce at the impact puts it at `rebound`.
+            const Real rest = h - impact.time;
+            const Real rebound =
+                -c.restitution * impact.speed * rest + 0.5 * p.normalAcceleration * rest * rest;
+            p.bounceCorrection = split && p.bounces && p.separation > 0
+                                     ? p.separation + h * p.reboundSpeed - rebound
+                                     : 0;
             if (!settings.warmStart || c.friction == 0)
                 p.tangentImpulse = {0, 0};
             if (!settings.warmStart)
@@ -288,6 +274,7 @@ void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
         }
         prepareAngularFriction(a, b, c, settings.warmStart);
     }
+    islands_.prepare(bodies, constraints);
     // Warm start only once every approach speed is measured: applied point by point above, the
     // cached impulses of earlier contacts leaked into the approach speeds of later ones, and a
     // row of touching elastic balls (Newton's cradle) gained energy with every collision.
@@ -306,8 +293,7 @@ void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
 
 Real ContactSolver::solveVelocitySweep(std::span<SolverBody> bodies,
                                        std::span<ContactConstraint> constraints,
-                                       const SolverSettings& settings, Real inverseH,
-                                       Real bias) const {
+                                       const SolverSettings& settings, Real inverseH, Real bias) {
     const Real omega = settings.relaxation;
     Real largestChange = 0;
     for (ContactConstraint& c : constraints) {
@@ -348,7 +334,13 @@ Real ContactSolver::solveVelocitySweep(std::span<SolverBody> bodies,
         }
         if (c.spinMass > 0 || c.rollingActive)
             largestChange = std::max(largestChange, solveAngularFriction(a, b, c, omega));
-        solveNormals(a, b, c, settings, inverseH, bias, largestChange);
+        if (c.normalGroup == NormalIslands::kNone)
+            solveNormals(a, b, c, settings, inverseH, bias, largestChange);
+    }
+    if (!islands_.empty()) {
+        largestChange =
+            std::max(largestChange, islands_.solve(bodies, constraints, settings.relaxation, bias,
+                                                   settings.slop, inverseH));
     }
     return largestChange;
 }
@@ -425,90 +417,12 @@ void ContactSolver::solveNormals(SolverBody& a, SolverBody& b, ContactConstraint
     for (int i = 0; i < n; ++i) {
         ContactConstraintPoint& p = c.points[i];
         p.normalImpulse = next(i);
-        p.maxNormalImpulse = std::max(p.maxNormalImpulse, next(i));
     }
     // The velocity change each point sees: a shift of load between the legs of a face, which the
     // block's minimum-norm choice may make, moves nothing and does not count.
     const Vec4 change = c.normalBlock * (next - old);
     for (int i = 0; i < n; ++i)
         largestChange = std::max(largestChange, std::abs(change(i)));
-}
-
-void ContactSolver::applyRestitution(std::span<SolverBody> bodies,
-                                     std::span<ContactConstraint> constraints,
-                                     const SolverSettings& settings, Real h,
-                                     Real baumgarteBias) const {
-    const Real inverseH = 1 / h;
-    // Sweeps like the velocity solve, because the points of one manifold share their bodies: a
-    // single pass over four landing corners would tip the body, the first corners bouncing
-    // before the last have been seen.
-    for (int sweep = 0; sweep < settings.iterations; ++sweep) {
-        Real largestChange = 0;
-        for (ContactConstraint& c : constraints) {
-            if (c.restitution == 0)
-                continue;
-            SolverBody& a = bodies[c.bodyA];
-            SolverBody& b = bodies[c.bodyB];
-            for (int i = 0; i < c.pointCount; ++i) {
-                ContactConstraintPoint& p = c.points[i];
-                // Only points that were approaching fast and actually stopped something bounce.
-                if (p.impactSpeed > -settings.restitutionThreshold || p.maxNormalImpulse == 0)
-                    continue;
-                const Real vn = normalSpeed(a, b, c.normal, p);
-                // Under Baumgarte the bias adds to the bounce, as in the study's Bullet: the
-                // energy gain at impacts it found.
-                const Real push =
-                    p.separation < 0 ? normalTarget(p, baumgarteBias, settings.slop, inverseH) : 0;
-                const Real target = p.reboundSpeed + push;
-                const Real next = std::max<Real>(0, p.normalImpulse - p.normalMass * (vn - target));
-                applyNormal(a, b, c.normal, p, next - p.normalImpulse);
-                // Integrated with the rebound speed from where it stands, the point would end
-                // s + h v+ above the surface; the bounce at the impact puts it at `rebound`.
-                const Real rest = h - p.impactTime;
-                const Real rebound = -c.restitution * p.impactSpeed * rest +
-                                     0.5 * p.normalAcceleration * rest * rest;
-                p.bounceCorrection =
-                    p.separation > 0 ? p.separation + h * p.reboundSpeed - rebound : 0;
-                if (p.normalMass > 0)
-                    largestChange =
-                        std::max(largestChange, std::abs(next - p.normalImpulse) / p.normalMass);
-                p.normalImpulse = next;
-            }
-        }
-        if (largestChange <= std::max(settings.tolerance, Real(1e-12)))
-            break;
-    }
-}
-
-void ContactSolver::correctBounces(std::span<const SolverBody> bodies,
-                                   std::span<ContactConstraint> constraints,
-                                   std::vector<PseudoVelocity>& pseudo, Real inverseH,
-                                   const SolverSettings& settings) const {
-    // A bounced speculative point is pulled back to where the rebound began: an equality on the
-    // pseudo-velocities, so the impulse may be negative.
-    for (int sweep = 0; sweep < std::max(settings.relaxIterations, 1); ++sweep) {
-        for (ContactConstraint& c : constraints) {
-            const SolverBody& a = bodies[c.bodyA];
-            const SolverBody& b = bodies[c.bodyB];
-            PseudoVelocity& pa = pseudo[c.bodyA];
-            PseudoVelocity& pb = pseudo[c.bodyB];
-            for (int i = 0; i < c.pointCount; ++i) {
-                ContactConstraintPoint& p = c.points[i];
-                if (p.bounceCorrection == 0)
-                    continue;
-                const Vec3 v =
-                    (pb.linear + pb.angular.cross(p.rB)) - (pa.linear + pa.angular.cross(p.rA));
-                const Real target = -p.bounceCorrection * inverseH;
-                const Real next = p.pseudoImpulse - p.normalMass * (v.dot(c.normal) - target);
-                const Vec3 impulse = (next - p.pseudoImpulse) * c.normal;
-                p.pseudoImpulse = next;
-                pa.linear -= a.inverseMass * impulse;
-                pa.angular -= a.inverseInertia * p.rA.cross(impulse);
-                pb.linear += b.inverseMass * impulse;
-                pb.angular += b.inverseInertia * p.rB.cross(impulse);
-            }
-        }
-    }
 }
 
 Real ContactSolver::residual(std::span<const SolverBody> bodies,
@@ -526,11 +440,7 @@ Real ContactSolver::residual(std::span<const SolverBody> bodies,
             // Complementarity of the normal row, in velocity units: min(lambda / m, v_n - target)
             // is zero at a solution (either no impulse or the target velocity met).
             const Real gap = v.dot(c.normal) - normalTarget(p, bias, settings.slop, inverseH);
-            Real r = std::abs(std::min(p.normalImpulse / p.normalMass, gap));
-            // Restitution raises the target after the sweeps; a bouncing point meets it instead.
-            if (c.restitution > 0 && p.impactSpeed < -settings.restitutionThreshold)
-                r = std::min(r, std::abs(v.dot(c.normal) - p.reboundSpeed));
-            worst = std::max(worst, r);
+            worst = std::max(worst, std::abs(std::min(p.normalImpulse / p.normalMass, gap)));
         }
     }
     return worst;

@@ -213,28 +213,23 @@ TEST(Extremes, HundredTimesHeavierBoxRestsOnALightOne) {
     EXPECT_TRUE(pile.world.warnings().empty()) << "100 is the largest ratio measured to hold";
 }
 
-// Known limit, warned of: at a mass ratio of 1e6 the contact solver cannot hold the heavy box up
-// (10 PGS sweeps move a 1 kg box's velocity, not a 1e6 kg one's). The light box is driven into
-// the ground (its centre 5 cm down after 5 steps, half its height after 13); the heavy box comes to
-// rest on the ground in its place, and the light box stays buried beneath it, creeping up at ~1e-5
-// m/s. Every step reports ok; the signals are the warning raised when the boxes' contact begins,
-// and SolverStats::deepestPenetration, which reads 1 m.
-// (Measured at other ratios, 10 sweeps: 1e2 holds; 1e3 sinks 0.88 m and then pushes both boxes up;
-// 1e4 launches them; 100 sweeps do not change the picture above 1e3.)
-TEST(Extremes, MillionTimesHeavierBoxDrivesTheLightOneIntoTheGround) {
+// At a mass ratio of 1e6 the light box holds the heavy one: a pile this small has its normal
+// rows solved exactly (normal_islands.h). Before that, 10 PGS sweeps moved the 1 kg box's
+// velocity, not the 1e6 kg one's, and the light box was driven into the ground (its centre 5 cm
+// down after 5 steps, buried after 13) while the heavy box came to rest in its place; 1e3 sank
+// and then launched both boxes. The warning is still raised: in a group too large for the exact
+// solve (more than NormalIslands::kMaxRows rows) the old limit stands.
+TEST(Extremes, MillionTimesHeavierBoxRestsOnALightOne) {
     Pile pile(1e6);
-    int sunk = -1;
+    Real deepest = 0;
     for (int i = 0; i < 300; ++i) {
         ASSERT_TRUE(pile.world.step().ok());
-        if (sunk < 0 && pile.world.position(pile.light).z() < 0.25)
-            sunk = i;
+        deepest = std::max(deepest, pile.world.solverStats().deepestPenetration);
     }
-    EXPECT_GE(sunk, 0);
-    EXPECT_LT(sunk, 20) << "within a third of a second";
-    EXPECT_LT(pile.world.position(pile.light).z(), 0) << "buried";
-    EXPECT_NEAR(pile.world.position(pile.heavy).z(), 0.5, 1e-3) << "the heavy box is on the ground";
-    EXPECT_GT(pile.world.solverStats().deepestPenetration, 0.9);
-    EXPECT_TRUE(pile.world.position(pile.light).allFinite());
+    const Real slop = SolverSettings{}.slop;
+    EXPECT_LT(deepest, slop + 1e-3);
+    EXPECT_NEAR(pile.world.position(pile.light).z(), 0.5, slop + 1e-3);
+    EXPECT_NEAR(pile.world.position(pile.heavy).z(), 1.5, 2 * (slop + 1e-3)) << "still on top";
     ASSERT_EQ(pile.world.warnings().size(), 1u) << "once, however long they touch";
     const Warning& w = pile.world.warnings()[0];
     EXPECT_EQ(w.kind, Warning::Kind::MassRatio);

@@ -166,9 +166,9 @@ TEST(Substeps, ProfileStagesArePartsOfTheStep) {
         ASSERT_TRUE(world.step().ok());
     const Profile& p = world.profile();
     const SolverProfile& s = p.solveStages;
-    for (const double t : {s.prepare, s.velocity, s.relax, s.restitution, s.positions})
+    for (const double t : {s.prepare, s.velocity, s.relax, s.residual, s.positions})
         EXPECT_GT(t, 0);
-    EXPECT_LE(s.prepare + s.velocity + s.relax + s.restitution + s.positions, p.solve);
+    EXPECT_LE(s.prepare + s.velocity + s.relax + s.residual + s.positions, p.solve);
     EXPECT_GT(p.bounds, 0);
     EXPECT_LE(p.forces + p.broadphase + p.narrowphase + p.islands + p.solve + p.integrate +
                   p.finalize + p.bounds + p.sleep,

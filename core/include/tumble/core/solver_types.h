@@ -72,14 +72,15 @@ struct SolverProfile {
                           ///< joints' block factorisations
     double velocity = 0;  ///< the velocity sweeps (biased under split impulse)
     double relax = 0;     ///< split impulse's sweeps without the bias
-    double restitution = 0;  ///< bounces, and the residual measured after them
-    double positions = 0;    ///< split impulse's position passes: bounces, joints
+    double residual = 0;  ///< the complementarity residual measured after the sweeps (bounces
+                          ///< are targets of the contact rows, solved in the sweeps)
+    double positions = 0;  ///< split impulse's position pass of the joints
 
     SolverProfile& operator+=(const SolverProfile& other) {
         prepare += other.prepare;
         velocity += other.velocity;
         relax += other.relax;
-        restitution += other.restitution;
+        residual += other.residual;
         positions += other.positions;
         return *this;
     }

@@ -2,13 +2,14 @@
 /// The constraint solve of one step: every row -- implicit springs, joints, contacts -- on one
 /// set of solver bodies, in a fixed list of stages (solve()), each timed into a SolverProfile:
 ///
-///   prepare      effective masses and warm start of every row; the springs' and the ball
-///                joints' block factorisations; the joints' geometric stiffness
-///   velocity     `iterations` PGS sweeps: springs, joints, contacts (biased under split impulse)
-///   relax        split impulse: `relaxIterations` sweeps without the bias; the difference is
-///                the pseudo-velocity
-///   restitution  bounces as velocity targets; the residual measured after them
-///   positions    split impulse's position passes on the pseudo-velocities: bounces, joints
+///   prepare    effective masses and warm start of every row, bounces (restitution targets
+///              of the contact rows), the contact groups solved exactly; the springs' and the
+///              ball joints' block factorisations; the joints' geometric stiffness
+///   velocity   `iterations` PGS sweeps: springs, joints, contacts (biased under split impulse)
+///   relax      split impulse: `relaxIterations` sweeps without the bias; the difference is
+///              the pseudo-velocity
+///   residual   the contacts' complementarity residual after the sweeps
+///   positions  split impulse's position pass of the joints on the pseudo-velocities
 ///
 /// The rows' own derivations are with them: contact_solver.h, spring_row.h and spring_block.h,
 /// joint_row.h. Deterministic: every row kind is solved in array order, in the same order in

@@ -10,11 +10,14 @@
 ///   tangent row clamped to [-mu lambda_n, mu lambda_n] on its own, as in the ESA study's Bullet)
 ///   is kept as an option; it overestimates friction by up to sqrt(2) off the tangent axes.
 /// - Restitution: Newton's law v_n+ = -e v_n-, with v_n- the approach speed measured BEFORE the
-///   solve, applied after the velocity iterations as a relative-velocity target on points that
-///   carried load; below a threshold speed contacts are inelastic. A speculative point (s > 0)
-///   that bounces would rebound from where it stands, s above the surface; the split-impulse
-///   pass moves it by -(1 + e) s instead, which puts it where a bounce at the moment of impact
-///   (t = s / |v-|) would have taken it, so bounce heights do not grow by s per impact.
+///   solve, below a threshold speed contacts are inelastic. A point that approaches faster and
+///   reaches the surface within the step demands v_n >= v_n+ in the same rows as every other
+///   contact (normal_block.h, normalTarget), so contacts that carry the impact on -- a box
+///   resting on the ground under a falling ball -- answer it together. A speculative point
+///   (s > 0) that bounces would rebound from where it stands, s above the surface; the
+///   split-impulse pass moves it by -(1 + e) s instead, which puts it where a bounce at the
+///   moment of impact (t = s / |v-|) would have taken it, so bounce heights do not grow by s per
+///   impact.
 /// - Stabilisation: split impulse by default. The velocity sweeps aim to remove a fraction of
 ///   the penetration beyond the slop within the step (a bias, as in Baumgarte); the positions are
 ///   advanced with those biased velocities. Then `relaxIterations` sweeps without the bias,
@@ -26,6 +29,9 @@
 ///   (the bias left in the real velocity, k_erp = 0.2) is kept to reproduce the study's energy
 ///   gain at impacts.
 /// - Each manifold's normal rows are solved as one block (normal_block.h): exact, no order bias.
+///   Small groups of manifolds between bodies of very different masses, or carrying an impact,
+///   are solved as one block of all their normal rows (normal_islands.h), which PGS cannot
+///   converge (a 1000:1 stack launched itself).
 /// - Speculative contacts: a point with separation s > 0 only demands v_n >= -s / h: the bodies
 ///   may close the gap within the step but not pass it, so fast bodies do not tunnel.
 /// - Spinning and rolling friction (optional, per manifold): a rigid point contact cannot resist
@@ -45,6 +51,7 @@
 #include <vector>
 
 #include "tumble/core/solver_types.h"
+#include "tumble/solver/normal_islands.h"
 #include "tumble/solver/solver_body.h"
 
 namespace tumble {
@@ -91,16 +98,19 @@ struct ContactConstraintPoint {
     std::array<Vec3, 2> tangentImpulseB{};  ///< IB^-1 (rB x t_k)
     /// Normal relative acceleration from the forces of this step (gravity...), (m/s^2); with it
     /// the solver finds when within the step, and how fast, a speculative point hits (see
-    /// applyRestitution). Zero when the caller does not know it.
+    /// prepare). Zero when the caller does not know it.
     Real normalAcceleration = 0;
-    Real approachSpeed = 0;     ///< v_n before the solve (m/s), negative when approaching
-    Real impactTime = 0;        ///< of the impact within the step (s), 0 when already touching
-    Real impactSpeed = 0;       ///< v_n at that time (m/s), negative when approaching
-    Real reboundSpeed = 0;      ///< v_n at the end of the step after a bounce (m/s)
-    Real maxNormalImpulse = 0;  ///< largest lambda_n during the solve: did the point carry load?
-    Real pseudoImpulse = 0;     ///< bounce position correction accumulated this step (N s)
-    Real bounceCorrection = 0;  ///< (m): a speculative point that bounced at separation s > 0
-                                ///< rebounds from the surface, not from s; see applyRestitution
+    Real approachSpeed = 0;  ///< v_n before the solve (m/s), negative when approaching
+    /// Part of v_n that the other contacts' support gives within the step (m/s), set by prepare
+    /// (bounce_support.h); the impact is found with it, the acceleration includes it.
+    Real supportSpeed = 0;
+    Real impactTime = 0;    ///< of the impact within the step (s), 0 when already touching
+    Real impactSpeed = 0;   ///< v_n at that time (m/s), negative when approaching
+    Real reboundSpeed = 0;  ///< v_n at the end of the step after a bounce (m/s)
+    bool bounces = false;   ///< Newton's law holds this step: the row is v_n >= reboundSpeed
+    /// (m): a speculative point that bounced at separation s > 0 rebounds from the surface, not
+    /// from s; the biased sweeps pull it back by this (see prepare and normalTarget)
+    Real bounceCorrection = 0;
 };
 
 struct ContactConstraint {
@@ -130,6 +140,9 @@ struct ContactConstraint {
     DiscBlock rolling;           ///< K of the relative spin about the tangents (1/(kg m^2))
     bool rollingActive = false;  ///< rolling rows solved this step
     Real angularReach = 0;       ///< farthest point from either centre of mass (m)
+    /// Group whose normal rows NormalIslands solves together, or NormalIslands::kNone: the
+    /// manifold's own block (normal_block.h).
+    std::uint32_t normalGroup = NormalIslands::kNone;
 };
 
 /// Extra velocity state for split impulse: moves positions this step only.
@@ -139,25 +152,19 @@ struct PseudoVelocity {
 };
 
 /// The contact rows' part of a solve (ConstraintSolver runs the stages and the other rows).
-/// Stateless between calls: everything a step carries over lives in the constraints.
+/// Everything a step carries over lives in the constraints; the members are this step's groups
+/// of exactly solved rows and scratch.
 class ContactSolver {
 public:
-    /// Effective masses, friction bases, approach speeds and impact times of every point, then
-    /// the warm start: the cached impulses applied to `bodies` (all of them after every approach
+    /// Effective masses, friction bases, approach speeds, impact times and bounces of every
+    /// point, the groups solved exactly (NormalIslands), then the warm start: the cached impulses applied to `bodies` (all of them after every approach
     /// speed is measured).
     void prepare(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints, Real h,
-                 const SolverSettings& settings) const;
+                 const SolverSettings& settings);
     /// One PGS sweep over the contacts with the given bias factor; returns the largest velocity
     /// change an impulse made (m/s).
     Real solveVelocitySweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
-                            const SolverSettings& settings, Real inverseH, Real bias) const;
-    void applyRestitution(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
-                          const SolverSettings& settings, Real h, Real baumgarteBias) const;
-    /// Split impulse: the position correction of the speculative points that bounced.
-    void correctBounces(std::span<const SolverBody> bodies,
-                        std::span<ContactConstraint> constraints,
-                        std::vector<PseudoVelocity>& pseudo, Real inverseH,
-                        const SolverSettings& settings) const;
+                            const SolverSettings& settings, Real inverseH, Real bias);
     /// Largest complementarity residual of the contacts at the current velocities (m/s).
     Real residual(std::span<const SolverBody> bodies,
                   std::span<const ContactConstraint> constraints, const SolverSettings& settings,
@@ -168,6 +175,10 @@ private:
     void solveNormals(SolverBody& a, SolverBody& b, ContactConstraint& c,
                       const SolverSettings& settings, Real inverseH, Real bias,
                       Real& largestChange) const;
+
+    NormalIslands islands_;                  ///< normal rows of small, ill-conditioned groups,
+                                             ///< solved exactly
+    std::vector<SolverBody> supportBodies_;  ///< scratch of addSupportAcceleration
 };
 
 }  // namespace tumble
