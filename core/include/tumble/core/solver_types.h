@@ -68,12 +68,12 @@ enum class JointType : std::uint8_t {
 /// Wall-clock time of each stage of one constraint solve (s), in the order the stages run
 /// (ConstraintSolver::solve).
 struct SolverProfile {
-    double prepare = 0;   ///< effective masses and warm start of every row; the springs' and ball
-                          ///< joints' block factorisations
-    double velocity = 0;  ///< the velocity sweeps (biased under split impulse)
-    double relax = 0;     ///< split impulse's sweeps without the bias
-    double residual = 0;  ///< the complementarity residual measured after the sweeps (bounces
-                          ///< are targets of the contact rows, solved in the sweeps)
+    double prepare = 0;    ///< effective masses and warm start of every row; the springs' and ball
+                           ///< joints' block factorisations
+    double velocity = 0;   ///< the velocity sweeps (biased under split impulse)
+    double relax = 0;      ///< split impulse's sweeps without the bias
+    double residual = 0;   ///< the complementarity residual measured after the sweeps (bounces
+                           ///< are targets of the contact rows, solved in the sweeps)
     double positions = 0;  ///< split impulse's position pass of the joints
 
     SolverProfile& operator+=(const SolverProfile& other) {

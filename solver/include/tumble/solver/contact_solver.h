@@ -157,8 +157,8 @@ struct PseudoVelocity {
 class ContactSolver {
 public:
     /// Effective masses, friction bases, approach speeds, impact times and bounces of every
-    /// point, the groups solved exactly (NormalIslands), then the warm start: the cached impulses applied to `bodies` (all of them after every approach
-    /// speed is measured).
+    /// point, the groups solved exactly (NormalIslands), then the warm start: the cached impulses
+    /// applied to `bodies` (all of them after every approach speed is measured).
     void prepare(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints, Real h,
                  const SolverSettings& settings);
     /// One PGS sweep over the contacts with the given bias factor; returns the largest velocity
