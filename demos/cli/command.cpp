@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "run.h"
+#include "sweep.h"
 #include "tumble/scene/scene.h"
 
 namespace tumble::cli {
@@ -49,6 +50,11 @@ int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ost
     app.require_subcommand(1);
     CLI::App* scenes = app.add_subcommand("scenes", "List the built-in scenes, one per line");
     CLI::App* run = app.add_subcommand("run", "Run a built-in scene or a scene file");
+    CLI::App* sweep = app.add_subcommand(
+        "sweep",
+        "Run a study: a scene over parameter values, one CSV row per run (docs/sweeps.md)");
+    SweepOptions sweepOptions;
+    addSweepOptions(*sweep, sweepOptions, true);
 
     std::string scene;
     double time = 0, dt = 0, recordRate = -1;
@@ -105,6 +111,15 @@ int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ost
     const std::string directory = sceneDirectory(args.empty() ? "" : args[0]);
     if (*scenes)
         return listScenes(directory, out, err);
+    if (*sweep) {
+        try {
+            sweepOptions.terminal = terminal;
+            return runSweep(sweepOptions, directory, out, err);
+        } catch (const InvalidArgument& e) {
+            err << "tumble sweep: error: " << e.what() << "\n";
+            return 2;
+        }
+    }
 
     try {
         // The command-line shortcuts are overrides like --set, applied last so they win.

@@ -312,6 +312,8 @@ int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, s
     const std::uint64_t first = world.stepCount();  // 0, or the step a resumed run starts from
     s.steps = first;
     sample(first);
+    if (options.observe)
+        options.observe(built, false);
 
     Progress progress(options.terminal && !options.quiet, scene.duration);
     const auto begin = Clock::now();
@@ -338,9 +340,13 @@ int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, s
             nextCheckpoint += options.checkpointEvery;
         }
         sample(i);
+        if (options.observe)
+            options.observe(built, false);
         progress.update(world.time(), std::chrono::duration<double>(Clock::now() - begin).count());
     }
     progress.clear();
+    if (options.observe)
+        options.observe(built, true);
     // After a failed step the world holds the last finite state: that is what is saved.
     if (checkpointing)
         saveCheckpoint(world, options.checkpoint);

@@ -2,6 +2,7 @@
 /// Running a scene headless: the step loop, the summary, CSV trajectories and the picture.
 
 #include <cstdint>
+#include <functional>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -27,6 +28,9 @@ struct RunOptions {
     std::string checkpoint;
     Real checkpointEvery = 0;  ///< (s), > 0; 0 = only at the start and the end
     std::string resume;        ///< checkpoint to continue from ("" = start at t = 0)
+    /// Called with the state at the start, after every step, and once more at the end
+    /// (end = true): how a study measures a run (measures.h) without a step loop of its own.
+    std::function<void(const BuiltScene&, bool end)> observe;
 };
 
 /// Energy of the dynamic bodies and springs (J). Potential is -m g.c with each body's gravity
