@@ -50,7 +50,8 @@ std::string resultsHeader(const Study& study);
 
 /// The results directory: what is done (every results*.csv in it, so shards and interrupted
 /// runs count), what is left for this invocation, and the rows as they come. A row is appended
-/// whole and synced before the next, so a killed sweep loses at most the runs in flight.
+/// whole as its run ends (synced to disk at least once a second), so a killed sweep loses at
+/// most the runs in flight.
 class SweepTable {
 public:
     /// Refuses (InvalidArgument) a directory made by another study or a table of other columns.
@@ -83,6 +84,7 @@ private:
     std::uint64_t finished_ = 0;
     std::chrono::steady_clock::time_point begin_ = std::chrono::steady_clock::now();
     double lastPrint_ = 0;
+    double lastSync_ = 0;  ///< (s since begin_) of the last fsync
 };
 
 /// `tumble sweep`: the study on local threads. Returns 0, or 2 for bad input (nothing written).

@@ -64,7 +64,7 @@ TEST(SweepCommand, DroppedBallFallTimeMatchesFreeFallPerRow) {
     const Outcome o = sweep(kDrop, dir / "out", {"--jobs", "2"});
     ASSERT_EQ(o.status, 0) << o.err;
     const auto rows = rowsOf(slurp(dir / "out" / "results.csv"));
-    ASSERT_EQ(rows.size(), 12u);  // 4 heights x 3 sideways speeds
+    ASSERT_EQ(rows.size(), 20u);  // 5 heights x 4 sideways speeds
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const auto& row = rows[i];
         EXPECT_EQ(row.at("run"), std::to_string(i));
@@ -77,7 +77,7 @@ TEST(SweepCommand, DroppedBallFallTimeMatchesFreeFallPerRow) {
         EXPECT_LE(vx, 1);
     }
     EXPECT_DOUBLE_EQ(std::stod(rows[0].at("z0")), 0.2335);
-    EXPECT_DOUBLE_EQ(std::stod(rows[11].at("z0")), 2.0335);
+    EXPECT_DOUBLE_EQ(std::stod(rows[19].at("z0")), 2.0335);
     EXPECT_NE(rows[0].at("vx"), rows[1].at("vx"));  // drawn per run
 }
 
@@ -94,7 +94,7 @@ TEST(SweepCommand, TableIsTheSameWhateverTheWorkersAndShards) {
     EXPECT_TRUE(contains(merge.err, "sweep: 0/0 runs"));
     EXPECT_FALSE(fs::exists(dir / "shards" / "results.shard-0-of-2.csv"));
     const std::string one = withoutWallTime(slurp(dir / "one" / "results.csv"));
-    EXPECT_EQ(std::count(one.begin(), one.end(), '\n'), 13);
+    EXPECT_EQ(std::count(one.begin(), one.end(), '\n'), 21);
     EXPECT_EQ(withoutWallTime(slurp(dir / "three" / "results.csv")), one);
     EXPECT_EQ(withoutWallTime(slurp(dir / "shards" / "results.csv")), one);
 }
@@ -105,13 +105,13 @@ TEST(SweepCommand, InterruptedStudyResumesWithoutRedoingRuns) {
     ASSERT_EQ(sweep(kDrop, dir / "whole").status, 0);
     const Outcome first = sweep(kDrop, dir / "cut", {"--max-runs", "5", "--jobs", "2"});
     ASSERT_EQ(first.status, 0) << first.err;
-    EXPECT_TRUE(contains(first.out, "5 of 12 runs done"));
+    EXPECT_TRUE(contains(first.out, "5 of 20 runs done"));
     const std::string partial = slurp(dir / "cut" / "results.csv");
     EXPECT_EQ(std::count(partial.begin(), partial.end(), '\n'), 6);
     std::ofstream(dir / "cut" / "results.csv", std::ios::app) << "7,1234,0.2";
     const Outcome second = sweep(kDrop, dir / "cut", {"--jobs", "2"});
     ASSERT_EQ(second.status, 0) << second.err;
-    EXPECT_TRUE(contains(second.err, "sweep: 7/7 runs"));  // 12 - 5: none twice
+    EXPECT_TRUE(contains(second.err, "sweep: 15/15 runs"));  // 20 - 5: none twice
     EXPECT_EQ(withoutWallTime(slurp(dir / "cut" / "results.csv")),
               withoutWallTime(slurp(dir / "whole" / "results.csv")));
 }
