@@ -176,3 +176,23 @@ TEST(SweepCommand, DirectoryOfAnotherStudyIsRefused) {
     EXPECT_EQ(o.status, 2);
     EXPECT_TRUE(contains(o.err, "holds the results of another study"));
 }
+
+// A run whose values the scene refuses is a row with status "error", not the end of the study.
+TEST(SweepCommand, RunThatFailsIsRecordedAndTheStudyGoesOn) {
+    const fs::path dir = scratch("sweep_error");
+    const std::string study = (dir / "mass.json").string();
+    std::ofstream(study) << R"({"scene": "bounce", "duration": 0.05,
+  "parameters": [{"path": "bodies.0.mass", "values": [0.057, -1, 0.1]}],
+  "outputs": ["steps"]})";
+    const Outcome o = sweep(study, dir / "out");
+    ASSERT_EQ(o.status, 0) << o.err;
+    EXPECT_TRUE(contains(o.err, "run 1: "));
+    EXPECT_TRUE(contains(o.err, "bodies[0].mass"));
+    const auto rows = rowsOf(slurp(dir / "out" / "results.csv"));
+    ASSERT_EQ(rows.size(), 3u);
+    EXPECT_EQ(rows[0].at("status"), "ok");
+    EXPECT_EQ(rows[1].at("status"), "error");
+    EXPECT_EQ(rows[1].at("steps"), "nan");
+    EXPECT_EQ(rows[2].at("status"), "ok");
+    EXPECT_EQ(rows[2].at("steps"), "12");  // 0.05 s at h = 1/240
+}
