@@ -209,7 +209,11 @@ Study parseStudy(const Json& document, const std::string& path, const std::strin
                              : (fs::path(directory) / (scene + ".json")).string();
     if (!fs::exists(study.scenePath))
         failAt("scene", "\"", scene, "\": no such ", isFile ? "file" : "built-in scene");
-    study.seed = static_cast<std::uint64_t>(o.number("seed", 0));
+    if (const Json* seed = o.find("seed")) {
+        if (!seed->is_number_unsigned())
+            failAt("seed", "expected an integer >= 0, got ", seed->dump());
+        study.seed = seed->get<std::uint64_t>();
+    }
     if (o.has("duration"))
         study.sets.push_back("duration=" + Json(o.positive("duration", 1)).dump());
     if (const Json* sets = o.find("set")) {
