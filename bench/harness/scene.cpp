@@ -105,7 +105,10 @@ void SceneRun::buildPile() {
                      -containerHalf_ + kPilePitch * (0.5 + cell / perSide),
                      kPilePitch * (0.6 + k / perLayer));
         start_.push_back(p);
-        world_->addBody(pileBody(k, p));
+        if (world_->addBody(pileBody(k, p)) < 0) {
+            skipped_ = world_->refusal();
+            return;
+        }
     }
 }
 
