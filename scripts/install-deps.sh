@@ -15,6 +15,7 @@ packages=(
   clang                                  # libFuzzer for scripts/fuzz.sh; the `clang` preset
   clang-format                           # scripts/check-format.sh (Debian 12: version 14)
   libbullet-dev libode-dev libbox2d-dev  # peer engines for tumble-bench (optional at configure)
+  libmujoco-dev                          # MuJoCo 2.2, the fourth peer (optional at configure)
   python3-matplotlib                     # PNG plots of the sweeps and reports (/usr/bin/python3)
   openmpi-bin libopenmpi-dev             # tumble-sweep: studies across MPI ranks (optional)
 )

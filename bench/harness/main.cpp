@@ -225,8 +225,9 @@ int main(int argc, char** argv) {
                    "Fig. 5 beside Tumble's): write study-peers-{oscillator,bounce}.csv to this "
                    "directory");
     std::vector<std::string> engines;
-    app.add_option("--engine", engines,
-                   "run only these engines (tumble, bullet, ode, box2d); also for --scaling");
+    app.add_option(
+        "--engine", engines,
+        "run only these engines (tumble, bullet, ode, box2d, mujoco); also for --scaling");
     CLI11_PARSE(app, argc, argv);
     if (!sweep.outDir.empty()) {
         sweep.engines = engines;

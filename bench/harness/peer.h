@@ -93,8 +93,10 @@ public:
     virtual int addCube(const Vec3& position) = 0;
     /// A static box (the pile's container walls). Planar engines ignore it.
     virtual void addStaticBox(const Vec3& /*center*/, const Vec3& /*halfExtents*/) {}
-    /// A dynamic body; its index, or -1 when the engine cannot (planar engines).
+    /// A dynamic body; its index, or -1 when the engine cannot (planar engines; see `refusal`).
     virtual int addBody(const BodySpec& /*body*/) { return -1; }
+    /// Why addBody returned -1, when the engine can say more than "cannot".
+    virtual std::string refusal() const { return "cannot add the body"; }
     /// The whole net with the engine's own springs; the first node's index (row-major), or -1
     /// when the engine has none (the harness then applies the threads' forces to point masses).
     virtual int addNet(const NetSpec& /*net*/) { return -1; }
@@ -129,6 +131,9 @@ std::unique_ptr<PeerWorld> createOde(const SceneSettings& settings);
 #ifdef TUMBLE_HAVE_BOX2D
 std::unique_ptr<PeerWorld> createBox2d(const SceneSettings& settings);
 #endif
+#ifdef TUMBLE_HAVE_MUJOCO
+std::unique_ptr<PeerWorld> createMujoco(const SceneSettings& settings);
+#endif
 
 /// The engines compiled in, Tumble first.
 inline std::vector<Peer> peers() {
@@ -141,6 +146,9 @@ inline std::vector<Peer> peers() {
 #endif
 #ifdef TUMBLE_HAVE_BOX2D
     list.push_back({"box2d", &createBox2d});
+#endif
+#ifdef TUMBLE_HAVE_MUJOCO
+    list.push_back({"mujoco", &createMujoco});
 #endif
     return list;
 }
@@ -161,6 +169,10 @@ inline std::vector<std::string> skippedPeers() {
 #endif
 #ifndef TUMBLE_HAVE_BOX2D
     skipped.push_back("box2d (libbox2d-dev 2.4, CMake package box2d, not found at configure time)");
+#endif
+#ifndef TUMBLE_HAVE_MUJOCO
+    skipped.push_back(
+        "mujoco (libmujoco-dev 2.2, CMake package mujoco, not found at configure time)");
 #endif
     return skipped;
 }

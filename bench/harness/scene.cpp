@@ -51,8 +51,10 @@ std::vector<Vec3> build(PeerWorld& world, const Scene& scene) {
                 start.push_back(Vec3((i - 0.5 * (n - 1)) * kPitch, 0, 0.5 + row));
         }
     }
-    for (const Vec3& p : start)
-        world.addCube(p);
+    for (const Vec3& p : start) {
+        if (world.addCube(p) < 0)
+            return {};  // the engine refused it (see PeerWorld::refusal)
+    }
     return start;
 }
 
@@ -74,6 +76,10 @@ SceneRun::SceneRun(const Peer& peer, const Scene& scene, const SceneSettings& ba
         case SceneKind::Stack:
         case SceneKind::Pyramid:
             start_ = build(*world_, scene);
+            if (start_.empty()) {
+                skipped_ = world_->refusal();
+                return;
+            }
             metrics_.topDrift = 0;
             break;
         case SceneKind::Pile:
@@ -105,7 +111,10 @@ void SceneRun::buildPile() {
                      -containerHalf_ + kPilePitch * (0.5 + cell / perSide),
                      kPilePitch * (0.6 + k / perLayer));
         start_.push_back(p);
-        world_->addBody(pileBody(k, p));
+        if (world_->addBody(pileBody(k, p)) < 0) {
+            skipped_ = world_->refusal();
+            return;
+        }
     }
 }
 

@@ -29,7 +29,8 @@ struct Scene {
     bool planar() const { return kind == SceneKind::Stack || kind == SceneKind::Pyramid; }
 };
 
-/// Builds a stack or pyramid in `world`; returns the cubes' start positions (the top cube last).
+/// Builds a stack or pyramid in `world`; returns the cubes' start positions (the top cube last),
+/// or none when the engine refused a cube.
 std::vector<Vec3> build(PeerWorld& world, const Scene& scene);
 
 /// The settings a scene runs with: `base`, with zero gravity for the nets (they fly in space).

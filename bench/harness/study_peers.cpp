@@ -142,9 +142,9 @@ int runStudyPeers(const StudyPeerOptions& options) {
                "max_abs_err\n";
     int ran = 0;
     for (const Peer& peer : peers()) {
-        // Tumble's own runs are tumble-validate's (the oscillator and bounce cases); Box2D has no
-        // restitution here.
-        if (peer.name == "tumble" || peer.name == "box2d" ||
+        // Tumble's own runs are tumble-validate's (the oscillator and bounce cases); Box2D and
+        // MuJoCo have no restitution here.
+        if (peer.name == "tumble" || peer.name == "box2d" || peer.name == "mujoco" ||
             !engineChosen(options.engines, peer.name))
             continue;
         ++ran;
