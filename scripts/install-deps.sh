@@ -16,6 +16,7 @@ packages=(
   clang-format                           # scripts/check-format.sh (Debian 12: version 14)
   libbullet-dev libode-dev libbox2d-dev  # peer engines for tumble-bench (optional at configure)
   python3-matplotlib                     # PNG plots of the sweeps and reports (/usr/bin/python3)
+  pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module (python/) and its tests
 )
 
 missing=()
