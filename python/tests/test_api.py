@@ -192,3 +192,16 @@ def test_the_pre_step_callback_can_edit_the_world():
     assert len(seen) == 10 and seen[1] == pytest.approx(1 / 60)
     assert world.linear_velocity(b)[2] == pytest.approx(0, abs=1e-12)
     world.set_pre_step_callback(None)
+
+
+def test_an_exception_in_the_pre_step_callback_leaves_step_before_any_stage():
+    world = tumble.World()
+    b = world.create_body()
+
+    def fail(w, time):
+        raise KeyError("from the callback")
+
+    world.set_pre_step_callback(fail)
+    with pytest.raises(KeyError, match="from the callback"):
+        world.step()
+    assert world.step_count == 0 and world.position(b)[2] == 0
