@@ -310,6 +310,40 @@ void bindReports(py::module_& m) {
         .field("fraction", &RayCastHit::fraction, "point = origin + fraction * translation")
         .field("point", &RayCastHit::point, "(m)")
         .field("normal", &RayCastHit::normal, "unit");
+    py::class_<Contact>(m, "Contact", "A shape pair of the last step, with its manifold.")
+        .def_readonly("shape_a", &Contact::shapeA)
+        .def_readonly("shape_b", &Contact::shapeB)
+        .def_readonly("body_a", &Contact::bodyA)
+        .def_readonly("body_b", &Contact::bodyB)
+        .def_property_readonly(
+            "normal", [](const Contact& c) { return c.manifold.normal; }, "from A to B, unit")
+        .def_property_readonly("point_count",
+                               [](const Contact& c) { return c.manifold.pointCount; })
+        .def_property_readonly(
+            "points",
+            [](const Contact& c) {
+                Eigen::Matrix<Real, Eigen::Dynamic, 3, Eigen::RowMajor> p(c.manifold.pointCount, 3);
+                for (int k = 0; k < c.manifold.pointCount; ++k)
+                    p.row(k) = c.manifold.points[static_cast<std::size_t>(k)].position.transpose();
+                return p;
+            },
+            "(point_count, 3) world positions (m)")
+        .def_property_readonly(
+            "separations",
+            [](const Contact& c) {
+                std::vector<Real> d;
+                for (int k = 0; k < c.manifold.pointCount; ++k)
+                    d.push_back(c.manifold.points[static_cast<std::size_t>(k)].separation);
+                return d;
+            },
+            "(m), negative when penetrating")
+        .def_property_readonly(
+            "normal_impulses",
+            [](const Contact& c) {
+                return std::vector<Real>(c.normalImpulse.begin(),
+                                         c.normalImpulse.begin() + c.manifold.pointCount);
+            },
+            "of the last solve (N s)");
     Struct<ContactEvent>(m, "ContactEvent", "Two shapes began or stopped touching.")
         .field("shape_a", &ContactEvent::shapeA, "")
         .field("shape_b", &ContactEvent::shapeB, "")

@@ -108,7 +108,9 @@ void bindShapesAndQueries(py::class_<PyWorld>& c) {
         .def("set_shape_filter", wrap(&World::setShapeFilter), shape, py::arg("filter"))
         .def("shape_transform", wrap(&World::shapeTransform), shape)
         .def("shape_bounds", wrap(&World::shapeBounds), shape, "(m)")
-        .def("contact_count", [](const PyWorld& w) { return w.world.contacts().size(); })
+        .def(
+            "contacts", [](const PyWorld& w) { return list(w.world.contacts()); },
+            "The shape pairs of the last step (copies), deterministic order.")
         .def("cast_ray_closest", wrap(&World::castRayClosest), py::arg("origin"),
              py::arg("translation"), filter,
              "First hit of origin + t translation, t in [0, 1] (m), or None.")

@@ -143,6 +143,10 @@ def test_events_queries_and_warnings():
         impacts += world.impact_events()
     assert any(e.body_b == ball or e.body_a == ball for e in begun)
     assert impacts and impacts[0].approach_speed > 0.5
+    touching = [c for c in world.contacts() if c.point_count > 0]
+    assert len(touching) == 1 and touching[0].normal[2] == pytest.approx(1.0)
+    assert sum(touching[0].normal_impulses) == pytest.approx(
+        world.mass_properties(ball).mass * 9.81 / 60, rel=0.05)
     hit = world.cast_ray_closest([0, 0, 5], [0, 0, -10])
     assert hit.body == ball and hit.point[2] == pytest.approx(1.0, abs=0.02)
     assert len(world.cast_ray_all([0, 0, 5], [0, 0, -10])) == 2
