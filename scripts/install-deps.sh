@@ -18,6 +18,7 @@ packages=(
   libmujoco-dev                          # MuJoCo 2.2, the fourth peer (optional at configure)
   python3-matplotlib                     # PNG plots of the sweeps and reports (/usr/bin/python3)
   openmpi-bin libopenmpi-dev             # tumble-sweep: studies across MPI ranks (optional)
+  pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module (python/) and its tests
 )
 
 missing=()

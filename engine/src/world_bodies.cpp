@@ -79,6 +79,19 @@ std::vector<BodyId> World::bodies() const {
     return ids;
 }
 
+DenseState World::denseState() const {
+    const std::vector<BodyMotion>& motion = impl_->bodies.motion;
+    if (motion.empty())
+        return {};
+    const BodyMotion& first = motion.front();
+    return {first.center.data(),
+            first.orientation.coeffs().data(),
+            first.linearVelocity.data(),
+            first.angularVelocity.data(),
+            motion.size(),
+            sizeof(BodyMotion)};
+}
+
 std::vector<ShapeId> World::bodyShapes(BodyId id) const {
     const Impl& w = *impl_;
     std::vector<ShapeId> ids;

@@ -14,6 +14,7 @@
 /// Threading: a World is not thread-safe; distinct worlds share only the atomic counter that
 /// hands each its id tag when it is made, so they may be made and stepped on different threads.
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -34,6 +35,19 @@
 #include "tumble/warnings.h"
 
 namespace tumble {
+
+/// Where the bodies' state lives in a world's storage, for readers that must not copy it (the
+/// Python bindings' numpy views). Body k of World::bodies() has its values at
+/// base + k * stride bytes from each pointer. Read only: writing bypasses the engine's checks
+/// and waking. Valid until a body is created or destroyed or a checkpoint is restored.
+struct DenseState {
+    const Real* center = nullptr;           ///< centre of mass, world (m): x, y, z
+    const Real* orientation = nullptr;      ///< body to world, as Quat::coeffs(): x, y, z, w
+    const Real* linearVelocity = nullptr;   ///< of the centre of mass (m/s): x, y, z
+    const Real* angularVelocity = nullptr;  ///< world frame (rad/s): x, y, z
+    std::size_t count = 0;                  ///< bodies
+    std::size_t stride = 0;                 ///< bytes from one body's values to the next's
+};
 
 class World {
 public:
@@ -57,6 +71,8 @@ public:
     /// Every body, in the order a step visits them (creation order until a body is destroyed:
     /// then the last body takes the destroyed one's place).
     std::vector<BodyId> bodies() const;
+    /// The state of every body in the order of bodies(), in place (see DenseState).
+    DenseState denseState() const;
     /// The body's shapes, in the order they were attached.
     std::vector<ShapeId> bodyShapes(BodyId id) const;
     /// The joints with the body at either end, in the order the solver sweeps them.
