@@ -172,8 +172,8 @@ void field(Ar& a, JointRecord& x) {
 }
 template <typename Ar>
 void field(Ar& a, JointStepState& x) {
-    fields(a, x.linearForce, x.angularTorque, x.motorForce, x.lowerForce, x.upperForce, x.force,
-           x.torque, x.broken);
+    fields(a, x.linearForce, x.previousLinearForce, x.angularTorque, x.motorForce, x.lowerForce,
+           x.upperForce, x.force, x.torque, x.broken);
 }
 template <typename Ar>
 void field(Ar& a, SpringDef& x) {

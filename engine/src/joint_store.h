@@ -27,9 +27,10 @@ struct JointRecord {
 /// The per-step result of a joint: its impulses as forces (so a change of h does not scale the
 /// warm start) and whether it broke.
 struct JointStepState {
-    Vec3 linearForce = Vec3::Zero();    ///< point or perpendicular rows (N, world)
-    Vec3 angularTorque = Vec3::Zero();  ///< angular rows (N m, world)
-    Real motorForce = 0;                ///< (N or N m)
+    Vec3 linearForce = Vec3::Zero();          ///< point or perpendicular rows (N, world)
+    Vec3 previousLinearForce = Vec3::Zero();  ///< linearForce one step earlier (N, world)
+    Vec3 angularTorque = Vec3::Zero();        ///< angular rows (N m, world)
+    Real motorForce = 0;                      ///< (N or N m)
     Real lowerForce = 0;
     Real upperForce = 0;
     Vec3 force = Vec3::Zero();   ///< reaction on B (N, world)

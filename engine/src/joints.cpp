@@ -146,6 +146,7 @@ void buildJointRows(const JointStore& joints, const BodyStore& bodies, Real h,
         row.motorSpeed = def.motorSpeed;
         row.maxMotorForce = def.maxMotorForce;
         row.linearImpulse = h * state.linearForce;
+        row.previousLinearImpulse = h * state.previousLinearForce;
         row.angularImpulse = h * state.angularTorque;
         row.motorImpulse = h * state.motorForce;
         row.lowerImpulse = h * state.lowerForce;
@@ -163,6 +164,7 @@ void storeJointResults(JointStore& joints, std::span<const JointRow> rows,
         const JointRow& row = rows[j];
         const std::uint32_t i = rowJoint[j];
         JointStepState& s = joints.state[i];
+        s.previousLinearForce = s.linearForce;
         s.linearForce = inverseH * row.linearImpulse;
         s.angularTorque = inverseH * row.angularImpulse;
         s.motorForce = inverseH * row.motorImpulse;

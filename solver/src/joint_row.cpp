@@ -17,6 +17,10 @@ using Vec6 = Eigen::Matrix<Real, 6, 1>;
 // 2 kExplicitShare. 1/2 (a = 1, half the single-mode limit of 2): with 1 (a^2 = 2) the chain
 // still blew up -- neighbouring links couple, and Lambda lags a step.
 constexpr Real kExplicitShare = 0.5;
+// phi = kTensionDamping x the relative change of S since the last step (1 at most). Measured
+// (h = 1/60): 5 let 2 rods under a 100x load gain 0.05 J in 300 s, 10 and 20 never gained;
+// a 30-bead chain kept 99.9, 99.7, 96.9 % of its swing after 20 s at 10, 20, 200.
+constexpr Real kTensionDamping = 20;
 
 // Anchors closer than this give the distance row no direction (m).
 constexpr Real kMinimumLength = 1e-12;
@@ -205,6 +209,35 @@ void updateDrift(const SolverBody& a, const SolverBody& b, JointRow& row, Real h
         const Vec3 next = row.separation + h * relative + drift;
         row.axialDrift = next.norm() - row.position - h * row.axialLinear.dot(relative);
     }
+}
+
+// One body of applyJointGeometricStiffness: s = h S from last step's Lambda, previous = from
+// the step's before.
+void stiffen(SolverBody& body, const Mat3& s, const Mat3& previous) {
+    // K = -(symmetric negative part of h S) >= 0 (kg m^2).
+    const Eigen::SelfAdjointEigenSolver<Mat3> parts(0.5 * (s + s.transpose()));
+    const Vec3 restoring = (-parts.eigenvalues()).cwiseMax(0);
+    if (restoring.isZero())
+        return;
+    const Mat3 k = parts.eigenvectors() * restoring.asDiagonal() * parts.eigenvectors().transpose();
+    // B = (I^-1)^(1/2); G = B K B, whose largest eigenvalue is a^2 = (omega h)^2.
+    const Eigen::SelfAdjointEigenSolver<Mat3> inertia(body.inverseInertia);
+    const Mat3 root = inertia.eigenvectors() *
+                      inertia.eigenvalues().cwiseMax(0).cwiseSqrt().asDiagonal() *
+                      inertia.eigenvectors().transpose();
+    const Eigen::SelfAdjointEigenSolver<Mat3> modes(root * k * root);
+    const Real a2 = modes.eigenvalues().maxCoeff();
+    if (!(a2 > 2 * kExplicitShare))
+        return;  // resolved: symplectic Euler keeps it, untouched
+    const Real beta = 0.5 - kExplicitShare / a2;
+    // A^-1 = B (1 + beta G)^-1 B. Steady tension keeps w0 (symplectic Euler on A); a changing
+    // one starts towards A^-1 I w0 = w0 - beta A^-1 K w0 (backward Euler's share).
+    const Vec3 scaled = (1 + beta * modes.eigenvalues().array()).inverse().matrix();
+    const Mat3 inverse =
+        root * modes.eigenvectors() * scaled.asDiagonal() * modes.eigenvectors().transpose() * root;
+    const Real phi = std::min<Real>(1, kTensionDamping * (s - previous).norm() / s.norm());
+    body.angularVelocity -= phi * beta * (inverse * (k * body.angularVelocity));
+    body.inverseInertia = 0.5 * (inverse + inverse.transpose());
 }
 
 }  // namespace
@@ -418,13 +451,16 @@ void storeJointBlockImpulses(std::span<JointRow> rows, std::span<const SpringRow
 
 void applyJointGeometricStiffness(std::span<SolverBody> bodies, std::span<const JointRow> rows,
                                   Real h, std::vector<Mat3>& stiffness) {
-    stiffness.assign(bodies.size(), Mat3::Zero());
+    // stiffness[i]: h S of body i from last step's Lambda; stiffness[n + i]: from the one before.
+    const std::size_t n = bodies.size();
+    stiffness.assign(2 * n, Mat3::Zero());
     bool any = false;
     // dtau / dtheta of an impulse p at lever r, times h: (r p' - (p . r) 1) h.
-    const auto add = [&](std::uint32_t body, const Vec3& r, const Vec3& p) {
+    const auto add = [&](std::uint32_t body, const Vec3& r, const Vec3& p, const Vec3& previous) {
         if (bodies[body].inverseInertia.isZero())
             return;
         stiffness[body] += h * (r * p.transpose() - p.dot(r) * Mat3::Identity());
+        stiffness[n + body] += h * (r * previous.transpose() - previous.dot(r) * Mat3::Identity());
         any = true;
     };
     for (const JointRow& row : rows) {
@@ -432,40 +468,14 @@ void applyJointGeometricStiffness(std::span<SolverBody> bodies, std::span<const 
             row.linearImpulse.isZero())
             continue;
         const Vec3 leverA = row.type == JointType::Slider ? Vec3(row.rA + row.separation) : row.rA;
-        add(row.bodyA, leverA, -row.linearImpulse);
-        add(row.bodyB, row.rB, row.linearImpulse);
+        add(row.bodyA, leverA, -row.linearImpulse, -row.previousLinearImpulse);
+        add(row.bodyB, row.rB, row.linearImpulse, row.previousLinearImpulse);
     }
     if (!any)
         return;
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-        SolverBody& body = bodies[i];
-        if (stiffness[i].isZero())
-            continue;
-        // K = -(symmetric negative part of h S) >= 0 (kg m^2).
-        const Mat3 symmetric = 0.5 * (stiffness[i] + stiffness[i].transpose());
-        const Eigen::SelfAdjointEigenSolver<Mat3> parts(symmetric);
-        const Vec3 restoring = (-parts.eigenvalues()).cwiseMax(0);
-        if (restoring.isZero())
-            continue;
-        const Mat3 k =
-            parts.eigenvectors() * restoring.asDiagonal() * parts.eigenvectors().transpose();
-        // B = (I^-1)^(1/2); G = B K B, whose largest eigenvalue is a^2 = (omega h)^2.
-        const Eigen::SelfAdjointEigenSolver<Mat3> inertia(body.inverseInertia);
-        const Mat3 root = inertia.eigenvectors() *
-                          inertia.eigenvalues().cwiseMax(0).cwiseSqrt().asDiagonal() *
-                          inertia.eigenvectors().transpose();
-        const Mat3 g = root * k * root;
-        const Eigen::SelfAdjointEigenSolver<Mat3> modes(g);
-        const Real a2 = modes.eigenvalues().maxCoeff();
-        if (!(a2 > 2 * kExplicitShare))
-            continue;  // resolved: symplectic Euler keeps it, untouched
-        const Real beta = 0.5 - kExplicitShare / a2;
-        // A^-1 = B (1 + beta G)^-1 B; start from A^-1 I w0 = w0 - beta A^-1 K w0.
-        const Vec3 scaled = (1 + beta * modes.eigenvalues().array()).inverse().matrix();
-        const Mat3 inverse = root * modes.eigenvectors() * scaled.asDiagonal() *
-                             modes.eigenvectors().transpose() * root;
-        body.angularVelocity -= beta * (inverse * (k * body.angularVelocity));
-        body.inverseInertia = 0.5 * (inverse + inverse.transpose());
+    for (std::size_t i = 0; i < n; ++i) {
+        if (!stiffness[i].isZero())
+            stiffen(bodies[i], stiffness[i], stiffness[n + i]);
     }
 }
 

@@ -82,6 +82,9 @@ struct JointRow {
     Real motorImpulse = 0;               ///< axial motor row (N s or N m s)
     Real lowerImpulse = 0;               ///< lower limit row, >= 0; or the equality row
     Real upperImpulse = 0;               ///< upper limit row, <= 0
+    /// linearImpulse one step further back (N s, world): how fast the tension changes
+    /// (applyJointGeometricStiffness). Read only.
+    Vec3 previousLinearImpulse = Vec3::Zero();
 
     // Filled by prepareJointRows().
     bool active = false;  ///< false when neither body can move
@@ -127,9 +130,9 @@ void solveJointPositions(std::span<SolverBody> pseudoBodies, std::span<JointRow>
                          Real inverseH, int sweeps);
 
 /// Implicit geometric stiffness of the point rows (ball, hinge, fixed, slider), applied to the
-/// bodies before the solve; `stiffness` is scratch, one entry per body (resized, so no
+/// bodies before the solve; `stiffness` is scratch, two entries per body (resized, so no
 /// allocation once warm). The rows hold last step's impulses Lambda (the warm start, read
-/// before prepareJointRows zeroes or projects them).
+/// before prepareJointRows zeroes or projects them) and the step's before (previousLinearImpulse).
 ///
 /// Why. A row's impulse acts at a lever arm r fixed at the step's start, but the body turns
 /// within the step; the torque r x Lambda then changes by (h w x r) x Lambda = h S w with
@@ -139,20 +142,20 @@ void solveJointPositions(std::span<SolverBody> pseudoBodies, std::span<JointRow>
 /// 100x load (omega h ~ 6 at h = 1/60) flew apart with 10 or 300 sweeps alike, and with the
 /// load on only 2 links; it held at h = 1/240.
 ///
-/// What. With the torque taken a fraction beta into the step, I (w1 - w0) = sum r x Lambda +
-/// beta h S w1, i.e. (I - beta h S) w1 = I w0 + sum r x Lambda: the body gets the effective
-/// inertia A = I - beta h S (S summed over the body's rows with the lagged Lambda; only its
-/// symmetric negative part -- tension, restoring -- so A >= I stays positive definite) and
-/// starts the solve from A^-1 I w0. On one mode this is the map with amplification
-/// det = 1 / (1 + beta a^2), a = omega h, stable for every a when beta >= 1/2 - 2 / a^2, and
-/// symplectic Euler itself (energy kept) at beta = 0. beta is therefore chosen per body from
-/// its own a^2 (the largest eigenvalue of h I^-1 (-S)): 0 while a^2 <= 1 -- a body whose
-/// motion the step resolves is left exactly as it was, no damping -- and 1/2 - 1/(2 a^2)
-/// beyond, which keeps the remaining explicit part at a^2 = 1, half the single-mode stability
-/// limit (at a^2 = 2 the chain still blew up: neighbouring links couple, and Lambda lags a
-/// step). The price, as with implicit Euler on stiff springs: on a body where beta > 0 every
-/// motion the geometric stiffness carries is damped at ~beta (Omega h)^2 per step, including
-/// slow ones (a chain's swing lives in the constraints' rotation, so it is such a motion).
+/// What. The body gets the effective inertia A = I - beta h S (S summed over the body's rows
+/// with the lagged Lambda; only its symmetric negative part K -- tension, restoring -- so
+/// A >= I stays positive definite). beta per body from its own a^2 = (omega h)^2 (the largest
+/// eigenvalue of h I^-1 K): 0 while a^2 <= 1 -- a body whose motion the step resolves is left
+/// exactly as it was -- and 1/2 - 1/(2 a^2) beyond, which holds the effective a^2 / (1 + beta
+/// a^2) in [1, 2), half symplectic Euler's single-mode limit (neighbouring links couple, and
+/// Lambda lags a step). The body keeps its w0, A (w1 - w0) = sum r x Lambda, when the tension
+/// is steady: on one mode symplectic Euler on A, determinant 1, nothing damped. It starts from
+/// w0 - phi beta A^-1 K w0 instead, phi = min(1, kTensionDamping |S - S_prev| / |S|) (S_prev
+/// from previousLinearImpulse): phi = 1 is backward Euler's start A^-1 I w0, amplification
+/// 1 / (1 + beta a^2) per step. Why both: always phi = 1 damped every motion the tension
+/// carries, the swing included (a 30-bead chain kept 54 % of its swing after 20 s at
+/// h = 1/60); always phi = 0 let 2 rods under a 100x load pump energy out of the tension's
+/// step-to-step change (lagged Lambda, an A that moves under w) and fly apart after ~15 s.
 /// Distance rows are left out: their geometric stiffness couples the two bodies' translations.
 void applyJointGeometricStiffness(std::span<SolverBody> bodies, std::span<const JointRow> rows,
                                   Real h, std::vector<Mat3>& stiffness);
