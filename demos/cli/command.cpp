@@ -75,6 +75,11 @@ int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ost
                     "Bodies the CSV holds (default every non-static one): indices, names or "
                     "NET.corners, comma-separated")
         ->delimiter(',');
+    run->add_option("--replay", options.replay,
+                    "Write a replay for the viewer (tumble view FILE) to FILE (docs/replay.md)");
+    run->add_option("--gltf", options.gltf, "Write the run as an animated glTF binary to FILE.glb");
+    run->add_option("--replay-rate", options.replayRate,
+                    "Frames per second (Hz) of --replay and --gltf (default 60)");
     run->add_option("--summary", options.summary, "Write the summary as JSON to FILE");
     run->add_option("--picture", options.picture,
                     "Draw start, middle and end (or outputs.pictureTimes) to FILE.svg");

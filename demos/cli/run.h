@@ -27,6 +27,9 @@ struct RunOptions {
     std::string checkpoint;
     Real checkpointEvery = 0;  ///< (s), > 0; 0 = only at the start and the end
     std::string resume;        ///< checkpoint to continue from ("" = start at t = 0)
+    std::string replay;        ///< replay file for the viewer ("" = none; docs/replay.md)
+    std::string gltf;          ///< animated glTF binary, .glb ("" = none)
+    Real replayRate = 60;      ///< frames per second (Hz) of the replay and the glTF, > 0
 };
 
 /// Energy of the dynamic bodies and springs (J). Potential is -m g.c with each body's gravity
