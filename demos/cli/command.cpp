@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "run.h"
+#include "serve.h"
 #include "tumble/scene/scene.h"
 
 namespace tumble::cli {
@@ -49,6 +50,11 @@ int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ost
     app.require_subcommand(1);
     CLI::App* scenes = app.add_subcommand("scenes", "List the built-in scenes, one per line");
     CLI::App* run = app.add_subcommand("run", "Run a built-in scene or a scene file");
+    CLI::App* view = app.add_subcommand(
+        "view", "Serve the viewer for a replay FILE (tumble run --replay) on 127.0.0.1");
+    ServeOptions serve;
+    view->add_option("file", serve.replay, "A replay file")->required();
+    view->add_option("--port", serve.port, "TCP port (default: a free one, printed)");
 
     std::string scene;
     double time = 0, dt = 0, recordRate = -1;
@@ -110,6 +116,15 @@ int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ost
     const std::string directory = sceneDirectory(args.empty() ? "" : args[0]);
     if (*scenes)
         return listScenes(directory, out, err);
+    if (*view) {
+        try {
+            serve.viewerDir = viewerDirectory(args.empty() ? "" : args[0]);
+            serveViewer(serve, out);
+        } catch (const InvalidArgument& e) {
+            err << "tumble: error: " << e.what() << "\n";
+            return 2;
+        }
+    }
 
     try {
         // The command-line shortcuts are overrides like --set, applied last so they win.
