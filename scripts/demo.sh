@@ -6,6 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
+bash scripts/viewer-deps.sh
 cmake --preset release >/dev/null
 cmake --build --preset release --target tumble-demo tumble-cli -j "$(nproc)"
 echo

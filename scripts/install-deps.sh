@@ -16,6 +16,7 @@ packages=(
   clang-format                           # scripts/check-format.sh (Debian 12: version 14)
   libbullet-dev libode-dev libbox2d-dev  # peer engines for tumble-bench (optional at configure)
   python3-matplotlib                     # PNG plots of the sweeps and reports (/usr/bin/python3)
+  chromium chromium-driver               # the viewer's browser test (scripts/viewer-deps.sh: npm)
 )
 
 missing=()
