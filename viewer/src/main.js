@@ -23,7 +23,7 @@ function setUpRenderer(world) {
   const camera = new THREE.PerspectiveCamera(45, 1, 0.01, 1000);
   camera.up.set(0, 0, 1); // Tumble's +Z is up
   const { centre, size } = world.bounds;
-  camera.position.copy(centre).add(new THREE.Vector3(1.2 * size, -1.6 * size, 0.9 * size));
+  camera.position.copy(centre).add(new THREE.Vector3(0.75 * size, -1.0 * size, 0.6 * size));
   const controls = new OrbitControls(camera, renderer.domElement);
   controls.target.copy(centre);
   controls.update();

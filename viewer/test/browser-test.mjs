@@ -4,11 +4,8 @@
 // clicking a body shows its figures, and that the drawing is not blank; saves a screenshot.
 //
 //   node viewer/test/browser-test.mjs TUMBLE REPLAY SCREENSHOT.png
-import { spawn } from 'node:child_process';
-import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { join } from 'node:path';
-import { chromium } from 'playwright-core';
+import { readFileSync } from 'node:fs';
+import { load, openBrowser, serve } from './browser.mjs';
 import { parseReplay, POSE_FLOATS } from '../src/replay.js';
 
 const [tumble, replayPath, screenshot] = process.argv.slice(2);
@@ -17,20 +14,6 @@ let failures = 0;
 function check(ok, what) {
   console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`);
   if (!ok) failures++;
-}
-
-/// Starts `tumble view` and resolves with the address it prints.
-function serve() {
-  const server = spawn(tumble, ['view', replayPath], { stdio: ['ignore', 'pipe', 'inherit'] });
-  return new Promise((resolve, reject) => {
-    let out = '';
-    server.stdout.on('data', (d) => {
-      out += d;
-      const m = out.match(/http:\/\/127\.0\.0\.1:\d+\//);
-      if (m) resolve({ server, url: m[0] });
-    });
-    server.on('exit', (code) => reject(new Error(`tumble view exited with ${code}`)));
-  });
 }
 
 /// The frame's pose of `body` in the file against the scene graph's (to float precision).
@@ -42,22 +25,12 @@ async function expectPose(page, frame, body, what) {
 }
 
 async function main() {
-  const { server, url } = await serve();
-  const profile = mkdtempSync(join(tmpdir(), 'tumble-chromium-'));
-  const context = await chromium.launchPersistentContext(profile, {
-    executablePath: '/usr/bin/chromium',
-    headless: true,
-    viewport: { width: 1200, height: 800 },
-    args: ['--headless', '--no-sandbox', '--disable-gpu', '--use-angle=swiftshader',
-      '--enable-unsafe-swiftshader', '--disable-quic', '--no-first-run',
-      '--disable-background-networking', '--disable-component-update', '--disable-sync'],
-  });
+  const { server, url } = await serve(tumble, replayPath);
+  const { context, close } = await openBrowser();
   try {
     const page = context.pages()[0] ?? (await context.newPage());
     page.on('pageerror', (e) => check(false, `page error: ${e.message}`));
-    await page.goto(url);
-    await page.waitForFunction(() => document.body.dataset.state !== 'loading', null, { timeout: 20000 });
-    const state = await page.evaluate(() => document.body.dataset.state);
+    const state = await load(page, url);
     check(state === 'ready', `the page drew the replay (state ${state}: ${await page.textContent('#error')})`);
     if (state !== 'ready') return;
     const d = replay.description;
@@ -133,9 +106,8 @@ async function main() {
     await page.screenshot({ path: screenshot });
     console.log(`screenshot: ${screenshot}`);
   } finally {
-    await context.close();
+    await close();
     server.kill();
-    rmSync(profile, { recursive: true, force: true });
   }
 }
 
