@@ -23,32 +23,17 @@ Json quat(const Quat& q) {
     return Json::array({q.x(), q.y(), q.z(), q.w()});
 }
 
-const char* typeName(BodyType type) {
-    switch (type) {
-        case BodyType::Static:
-            return "static";
-        case BodyType::Kinematic:
-            return "kinematic";
-        case BodyType::Dynamic:
-            return "dynamic";
-    }
-    return "dynamic";
-}
+// Names in the enums' order (tumble/body.h, tumble/core/solver_types.h).
+constexpr const char* kBodyTypes[] = {"static", "kinematic", "dynamic"};
+constexpr const char* kJointTypes[] = {"ball", "hinge", "slider", "fixed", "distance"};
+static_assert(static_cast<int>(BodyType::Dynamic) == 2 &&
+              static_cast<int>(JointType::Distance) == 4);
 
+const char* typeName(BodyType type) {
+    return kBodyTypes[static_cast<int>(type)];
+}
 const char* jointName(JointType type) {
-    switch (type) {
-        case JointType::Ball:
-            return "ball";
-        case JointType::Hinge:
-            return "hinge";
-        case JointType::Slider:
-            return "slider";
-        case JointType::Fixed:
-            return "fixed";
-        case JointType::Distance:
-            return "distance";
-    }
-    return "ball";
+    return kJointTypes[static_cast<int>(type)];
 }
 
 /// The geometry's type and sizes, in its own frame.
@@ -129,6 +114,60 @@ void complete(ReplayContent& c, const World& world) {
     gather(c.joints, &World::bodyJoints, &World::jointDef);
 }
 
+Json bodiesJson(const World& world, const ReplayContent& c) {
+    Json bodies = Json::array();
+    for (std::size_t i = 0; i < c.bodies.size(); ++i) {
+        const BodyId b = c.bodies[i];
+        const MassProperties m = world.massProperties(b);
+        Json shapes = Json::array();
+        for (const ShapeId s : world.bodyShapes(b)) {
+            const ShapeDef& def = world.shapeDef(s);
+            Json shape = geometryJson(def.geometry);
+            shape["position"] = vec(def.localPose.position);
+            shape["orientation"] = quat(def.localPose.rotation);
+            shapes.push_back(shape);
+        }
+        const bool dynamic = world.bodyType(b) == BodyType::Dynamic;
+        bodies.push_back({{"name", c.names.empty() ? "" : c.names[i]},
+                          {"type", typeName(world.bodyType(b))},
+                          {"mass", dynamic ? m.mass : 0.0},
+                          {"localCenter", vec(m.localCenter)},
+                          {"shapes", shapes}});
+    }
+    return bodies;
+}
+
+Json springsJson(const World& world, const ReplayContent& c) {
+    Json springs = Json::array();
+    for (const SpringId s : c.springs) {
+        const SpringDef& d = world.springDef(s);
+        springs.push_back({{"bodyA", indexOf(c.bodies, d.bodyA, "spring")},
+                           {"bodyB", indexOf(c.bodies, d.bodyB, "spring")},
+                           {"anchorA", vec(d.localAnchorA)},
+                           {"anchorB", vec(d.localAnchorB)},
+                           {"restLength", d.restLength},
+                           {"thread", d.tensionOnly}});
+    }
+    return springs;
+}
+
+Json jointsJson(const World& world, const ReplayContent& c) {
+    Json joints = Json::array();
+    for (const JointId id : c.joints) {
+        const JointDef& d = world.jointDef(id);
+        const Vec3 anchorB = d.type == JointType::Distance ? d.anchorB : d.anchor;
+        // Anchors in each body's frame, so a viewer draws them at any frame's poses.
+        joints.push_back(
+            {{"type", jointName(d.type)},
+             {"bodyA", indexOf(c.bodies, d.bodyA, "joint")},
+             {"bodyB", indexOf(c.bodies, d.bodyB, "joint")},
+             {"anchorA", vec(world.transform(d.bodyA).applyInverse(d.anchor))},
+             {"anchorB",
+              vec(d.bodyB.isNull() ? anchorB : world.transform(d.bodyB).applyInverse(anchorB))}});
+    }
+    return joints;
+}
+
 }  // namespace
 
 ReplayWriter::ReplayWriter(const std::string& path, const World& world, ReplayContent content)
@@ -154,57 +193,15 @@ ReplayWriter::~ReplayWriter() {
 void ReplayWriter::writeDescription(const World& world) {
     complete(content_, world);
     const ReplayContent& c = content_;
-    Json bodies = Json::array();
-    for (std::size_t i = 0; i < c.bodies.size(); ++i) {
-        const BodyId b = c.bodies[i];
-        const MassProperties m = world.massProperties(b);
-        Json shapes = Json::array();
-        for (const ShapeId s : world.bodyShapes(b)) {
-            const ShapeDef& def = world.shapeDef(s);
-            Json shape = geometryJson(def.geometry);
-            shape["position"] = vec(def.localPose.position);
-            shape["orientation"] = quat(def.localPose.rotation);
-            shapes.push_back(shape);
-        }
-        const bool dynamic = world.bodyType(b) == BodyType::Dynamic;
-        bodies.push_back({{"name", c.names.empty() ? "" : c.names[i]},
-                          {"type", typeName(world.bodyType(b))},
-                          {"mass", dynamic ? m.mass : 0.0},
-                          {"localCenter", vec(m.localCenter)},
-                          {"shapes", shapes}});
-    }
-    Json springs = Json::array();
-    for (const SpringId s : c.springs) {
-        const SpringDef& d = world.springDef(s);
-        springs.push_back({{"bodyA", indexOf(c.bodies, d.bodyA, "spring")},
-                           {"bodyB", indexOf(c.bodies, d.bodyB, "spring")},
-                           {"anchorA", vec(d.localAnchorA)},
-                           {"anchorB", vec(d.localAnchorB)},
-                           {"restLength", d.restLength},
-                           {"thread", d.tensionOnly}});
-    }
-    Json joints = Json::array();
-    for (const JointId id : c.joints) {
-        const JointDef& d = world.jointDef(id);
-        const Vec3 anchorB = d.type == JointType::Distance ? d.anchorB : d.anchor;
-        // Anchors in each body's frame, so a viewer draws them at any frame's poses.
-        joints.push_back(
-            {{"type", jointName(d.type)},
-             {"bodyA", indexOf(c.bodies, d.bodyA, "joint")},
-             {"bodyB", indexOf(c.bodies, d.bodyB, "joint")},
-             {"anchorA", vec(world.transform(d.bodyA).applyInverse(d.anchor))},
-             {"anchorB",
-              vec(d.bodyB.isNull() ? anchorB : world.transform(d.bodyB).applyInverse(anchorB))}});
-    }
     const Json description{{"format", "tumble-replay"},
                            {"version", kReplayVersion},
                            {"title", c.title},
                            {"timeStep", world.settings().timeStep},
                            {"gravity", vec(world.settings().gravity)},
                            {"frame", {{"tensions", c.tensions}, {"contacts", c.contacts}}},
-                           {"bodies", bodies},
-                           {"springs", springs},
-                           {"joints", joints}};
+                           {"bodies", bodiesJson(world, c)},
+                           {"springs", springsJson(world, c)},
+                           {"joints", jointsJson(world, c)}};
     std::string text = description.dump();
     text.append((4 - text.size() % 4) % 4, ' ');  // frames start 4-byte aligned
     out_->write(replay::kMagic, sizeof replay::kMagic);
