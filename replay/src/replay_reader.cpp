@@ -19,6 +19,8 @@ public:
 
     /// Copies `size` bytes to `to`, refusing a file that ends before them.
     void read(void* to, std::size_t size, const char* what) {
+        if (size == 0)  // an empty vector's data() may be null, which memcpy must not see
+            return;
         if (size > bytes_.size() - at_)
             fail(name_, ": truncated replay: ", what, " needs ", size, " bytes at byte ", at_,
                  ", the file has ", bytes_.size());
