@@ -19,6 +19,7 @@ packages=(
   python3-matplotlib                     # PNG plots of the sweeps and reports (/usr/bin/python3)
   openmpi-bin libopenmpi-dev             # tumble-sweep: studies across MPI ranks (optional)
   pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module (python/) and its tests
+  chromium chromium-driver               # the viewer's browser test (scripts/viewer-deps.sh: npm)
 )
 
 missing=()

@@ -8,6 +8,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs="$(nproc)"
 bash scripts/install-deps.sh
+bash scripts/viewer-deps.sh
 
 echo "=== formatting"
 bash scripts/check-format.sh

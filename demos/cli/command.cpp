@@ -6,6 +6,7 @@
 
 #include "run.h"
 #include "sweep.h"
+#include "serve.h"
 #include "tumble/scene/scene.h"
 
 namespace tumble::cli {
@@ -55,6 +56,11 @@ int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ost
         "Run a study: a scene over parameter values, one CSV row per run (docs/sweeps.md)");
     SweepOptions sweepOptions;
     addSweepOptions(*sweep, sweepOptions, true);
+    CLI::App* view = app.add_subcommand(
+        "view", "Serve the viewer for a replay FILE (tumble run --replay) on 127.0.0.1");
+    ServeOptions serve;
+    view->add_option("file", serve.replay, "A replay file")->required();
+    view->add_option("--port", serve.port, "TCP port (default: a free one, printed)");
 
     std::string scene;
     double time = 0, dt = 0, recordRate = -1;
@@ -81,6 +87,11 @@ int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ost
                     "Bodies the CSV holds (default every non-static one): indices, names or "
                     "NET.corners, comma-separated")
         ->delimiter(',');
+    run->add_option("--replay", options.replay,
+                    "Write a replay for the viewer (tumble view FILE) to FILE (docs/replay.md)");
+    run->add_option("--gltf", options.gltf, "Write the run as an animated glTF binary to FILE.glb");
+    run->add_option("--replay-rate", options.replayRate,
+                    "Frames per second (Hz) of --replay and --gltf (default 60)");
     run->add_option("--summary", options.summary, "Write the summary as JSON to FILE");
     run->add_option("--picture", options.picture,
                     "Draw start, middle and end (or outputs.pictureTimes) to FILE.svg");
@@ -117,6 +128,15 @@ int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ost
             return runSweep(sweepOptions, directory, out, err);
         } catch (const InvalidArgument& e) {
             err << "tumble sweep: error: " << e.what() << "\n";
+            return 2;
+        }
+    }
+    if (*view) {
+        try {
+            serve.viewerDir = viewerDirectory(args.empty() ? "" : args[0]);
+            serveViewer(serve, out);
+        } catch (const InvalidArgument& e) {
+            err << "tumble: error: " << e.what() << "\n";
             return 2;
         }
     }

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 
+#include "replay_output.h"
 #include "svg.h"
 #include "tumble/checkpoint.h"
 
@@ -267,6 +268,7 @@ int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, s
     auto csv = openOutput(options.record, "record");
     auto summaryFile = openOutput(options.summary, "summary");
     auto pictureFile = openOutput(options.picture, "picture");
+    ReplayOutput replay(options.replay, options.gltf, options.replayRate, scene, built);
     const bool checkpointing = !options.checkpoint.empty();
     if (checkpointing)  // the state at the start; a path that cannot be written fails here
         saveCheckpoint(world, options.checkpoint);
@@ -293,6 +295,7 @@ int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, s
     std::sort(panelSteps.begin(), panelSteps.end());
     panelSteps.erase(std::unique(panelSteps.begin(), panelSteps.end()), panelSteps.end());
     auto sample = [&](std::uint64_t step) {
+        replay.sample(world);
         if (!drawing)
             return;
         if (std::binary_search(panelSteps.begin(), panelSteps.end(), step))
@@ -379,6 +382,7 @@ int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, s
         picture.addPanel(world, built.shapes, built.springs, built.joints, world.time());
     if (summaryFile)
         *summaryFile << summaryJson(s);
+    replay.finish();
     if (pictureFile)
         *pictureFile << picture.render();
     if (!options.quiet)
