@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "command.h"
 
 namespace tumble::cli::test {
@@ -28,8 +30,10 @@ inline Outcome tumbleRun(std::vector<std::string> args) {
 
 /// A fresh scratch directory per test.
 inline std::filesystem::path scratch(const std::string& name) {
+    // The process id keeps test runs of several build trees at once (presets, worktrees) apart.
     const std::filesystem::path dir =
-        std::filesystem::temp_directory_path() / ("tumble_cli_test_" + name);
+        std::filesystem::temp_directory_path() /
+        ("tumble_cli_test_" + std::to_string(::getpid()) + "_" + name);
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     return dir;

@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "checkpoint_io.h"
 #include "refusal.h"
 #include "testkit/same_ids.h"
@@ -385,7 +387,8 @@ TEST(Checkpoint, FileRoundTripReplacesTheTemporary) {
     Scene s = pileScene();
     ASSERT_TRUE(testkit::simulate(s.world, 30));
     const std::filesystem::path file =
-        std::filesystem::temp_directory_path() / "tumble_checkpoint_test.ckpt";
+        std::filesystem::temp_directory_path() /
+        ("tumble_checkpoint_test_" + std::to_string(::getpid()) + ".ckpt");
     std::filesystem::path tmp = file;
     tmp += ".tmp";
     saveCheckpoint(s.world, file);
