@@ -267,9 +267,19 @@ struct CheckpointAccess {
     template <typename Ar>
     static void io(Ar& a, ContactManager& x) {
         io(a, x.broadphase_);
+        // Each slot's record and flags together, as when they were one struct (the format
+        // stays); the flags' array grows with the records as they are read.
         sequence(a, x.pool_, [&](ContactManager::Record& r) {
-            fields(a, r.contact, r.key, r.next, r.previous, r.alive, r.active, r.listed, r.queued);
+            const auto slot = static_cast<std::size_t>(&r - x.pool_.data());
+            if (x.state_.size() != x.pool_.size())
+                x.state_.resize(x.pool_.size());
+            ContactManager::SlotState& s = x.state_[slot];
+            fields(a, r.contact, r.key, r.next, r.previous, s.alive, s.active, s.listed, s.queued);
+            s.shapeA = r.contact.shapeA.index;
+            s.shapeB = r.contact.shapeB.index;
+            s.cleared = false;
         });
+        x.state_.resize(x.pool_.size());
         fields(a, x.proxyToShape_, x.freeSlots_, x.dead_, x.active_, x.activated_, x.wakeRequests_,
                x.placedProxies_, x.contactMargin, x.aabbMargin);
         x.viewStale_ = true;
@@ -364,11 +374,12 @@ struct CheckpointAccess {
             if (w.shapes.isAlive(slot) && (!b.isValid(shape.body) || shape.proxy >= proxies))
                 r.corrupt("a shape's body or proxy is invalid");
         }
-        for (const ContactManager::Record& record : c.pool_) {
+        for (std::size_t slot = 0; slot < c.pool_.size(); ++slot) {
+            const ContactManager::Record& record = c.pool_[slot];
             all(record.next, edges, true, "contact edge");
             all(record.previous, edges, true, "contact edge");
             const Contact& contact = record.contact;
-            if (record.alive &&
+            if (c.state_[slot].alive &&
                 (!b.isValid(contact.bodyA) || !b.isValid(contact.bodyB) ||
                  contact.shapeA.index >= shapeSlots || contact.shapeB.index >= shapeSlots))
                 r.corrupt("a contact's bodies or shapes are invalid");
