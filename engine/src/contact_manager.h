@@ -160,7 +160,15 @@ private:
     void unlink(std::uint32_t slot, int side, BodyInfo& body);
     /// Drops inactive contacts from active_ and frees the slots of destroyed ones.
     void compactActive();
+    /// An active pair whose record the narrowphase rewrites this step.
+    struct PairWork {
+        std::uint32_t slot;
+        std::uint32_t indexA;  ///< dense body indices
+        std::uint32_t indexB;
+        Real margin;  ///< speculative distance (m); negative: the boxes are apart, no points
+    };
     void collideActive(const ShapeStore& shapes, BodyStore& bodies, const StepContext& context);
+    void collidePair(const PairWork& work, const ShapeStore& shapes, BodyStore& bodies);
     /// A contact began (got its first points) or ended (lost its last): events and warnings.
     void reportTouch(const Contact& contact, bool began, const BodyStore& bodies,
                      std::uint32_t indexA, std::uint32_t indexB);
@@ -176,6 +184,7 @@ private:
     std::vector<std::uint32_t> active_;     ///< sorted by key
     std::vector<std::uint32_t> activated_;  ///< to merge into active_
     std::vector<std::uint32_t> scratch_;
+    std::vector<PairWork> work_;  ///< collideActive's second pass
     std::vector<std::uint32_t> wakeRequests_;
     std::vector<std::uint32_t> placedProxies_;  ///< sorted; see markPlaced
     mutable std::vector<Contact> view_;
