@@ -22,7 +22,7 @@
 #include "event_log.h"
 #include "shape_store.h"
 #include "step_context.h"
-#include "tumble/collision/sweep_and_prune.h"
+#include "tumble/collision/grid_broadphase.h"
 #include "tumble/contact.h"
 #include "warning_log.h"
 
@@ -99,7 +99,7 @@ public:
     /// Every contact, active or parked, in pair order. Built when asked (it is not needed by the
     /// step), so sleeping contacts cost nothing unless the application reads them.
     std::span<const Contact> contacts() const;
-    const SweepAndPrune& broadphase() const { return broadphase_; }
+    const GridBroadphase& broadphase() const { return broadphase_; }
     /// Keeps two shapes' proxies from pairing (jointed bodies), or lets them pair again; their
     /// contact goes or comes at the next broadphase update.
     void setPairExcluded(std::uint32_t proxyA, std::uint32_t proxyB, bool excluded) {
@@ -175,7 +175,12 @@ private:
     /// Lists the sleeping body of a touching pair to be woken, if the other may wake it.
     void wakeTouched(const BodyStore& bodies, std::uint32_t indexA, std::uint32_t indexB);
 
-    SweepAndPrune broadphase_;
+    /// A sweep-and-prune per grid cell. One sweep-and-prune over a whole pile keeps its
+    /// endpoints sorted on the vertical axis too, where a pile five layers deep packs all its
+    /// bodies: a moving box bubbles past O(n) endpoints there (1,160 per move at 10k bodies,
+    /// 512 at 4k), and the broadphase grew as n^2.8. Cells bound that walk by their contents;
+    /// the pair sets are the same.
+    GridBroadphase broadphase_;
     std::vector<std::uint32_t> proxyToShape_;
     std::vector<Record> pool_;
     std::vector<SlotState> state_;          ///< beside pool_, one per slot
