@@ -359,7 +359,7 @@ void ContactManager::collideActive(const ShapeStore& shapes, BodyStore& bodies,
         if (!near && state.cleared)
             continue;
         state.cleared = !near;
-        work_.push_back({slot, indexA, indexB, near ? margin : -1});
+        work_.push_back({slot, indexA, indexB, margin, near});
     }
     for (std::size_t i = 0; i < work_.size(); ++i) {
         if (i + kAhead < work_.size()) {
@@ -374,7 +374,7 @@ void ContactManager::collideActive(const ShapeStore& shapes, BodyStore& bodies,
 void ContactManager::collidePair(const PairWork& work, const ShapeStore& shapes,
                                  BodyStore& bodies) {
     Manifold manifold;
-    if (work.margin >= 0) {
+    if (work.near) {
         const SlotState& state = state_[work.slot];
         const ShapeRecord& shapeA = shapes.records[state.shapeA];
         const ShapeRecord& shapeB = shapes.records[state.shapeB];

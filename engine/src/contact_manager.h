@@ -165,7 +165,8 @@ private:
         std::uint32_t slot;
         std::uint32_t indexA;  ///< dense body indices
         std::uint32_t indexB;
-        Real margin;  ///< speculative distance (m); negative: the boxes are apart, no points
+        Real margin;  ///< speculative distance (m)
+        bool near;    ///< the boxes are within the margin: collide (else the manifold is empty)
     };
     void collideActive(const ShapeStore& shapes, BodyStore& bodies, const StepContext& context);
     void collidePair(const PairWork& work, const ShapeStore& shapes, BodyStore& bodies);
