@@ -255,6 +255,37 @@ struct CheckpointAccess {
                x.largeThreshold_, x.reach_);
     }
 
+    /// The grid: its cells' sweep-and-prunes and the pair counts. The cell index is rebuilt
+    /// from the cells' keys; scratch buffers are not saved.
+    template <typename Ar>
+    static void io(Ar& a, GridBroadphase& x) {
+        sequence(a, x.proxies_, [&](GridBroadphase::Proxy& p) {
+            fields(a, p.box, p.publishedBox, p.filter, p.range.lower, p.range.upper,
+                   p.publishedRange.lower, p.publishedRange.upper, p.oversizedLocal, p.state,
+                   p.isOversized, p.wasOversized, p.isDirty, p.wasLive);
+            sequence(a, p.cells,
+                     [&](GridBroadphase::Membership& m) { fields(a, m.cell, m.local); });
+        });
+        sequence(a, x.cells_, [&](GridBroadphase::Cell& c) {
+            io(a, c.sap);
+            fields(a, c.globalId, c.key, c.isDirty);
+        });
+        io(a, x.oversized_);
+        sequence(a, x.counts_, [&](GridBroadphase::PairCount& c) { fields(a, c.pair, c.count); });
+        fields(a, x.oversizedGlobal_, x.oversizedList_, x.oversizedPublished_, x.oversizedDirty_,
+               x.dirtyCells_, x.dirty_, x.freeIds_, x.excluded_, x.toggled_, x.crossPairs_,
+               x.pairs_, x.added_, x.removed_, x.liveCount_);
+        if constexpr (Ar::kReading) {
+            x.cellIndex_.clear();
+            for (std::uint32_t i = 0; i < x.cells_.size(); ++i) {
+                if (!x.cellIndex_.emplace(x.cells_[i].key, i).second)
+                    a.corrupt("two grid cells with one key");
+            }
+            x.visitMark_.clear();
+            x.rayStamp_ = 0;
+        }
+    }
+
     /// The id table of a store: slots, dense order, free list (not the world tag).
     template <typename Ar, typename Id>
     static void io(Ar& a, HandlePool<Id>& x) {
@@ -267,9 +298,19 @@ struct CheckpointAccess {
     template <typename Ar>
     static void io(Ar& a, ContactManager& x) {
         io(a, x.broadphase_);
+        // Each slot's record and flags together, as when they were one struct (the format
+        // stays); the flags' array grows with the records as they are read.
         sequence(a, x.pool_, [&](ContactManager::Record& r) {
-            fields(a, r.contact, r.key, r.next, r.previous, r.alive, r.active, r.listed, r.queued);
+            const auto slot = static_cast<std::size_t>(&r - x.pool_.data());
+            if (x.state_.size() != x.pool_.size())
+                x.state_.resize(x.pool_.size());
+            ContactManager::SlotState& s = x.state_[slot];
+            fields(a, r.contact, r.key, r.next, r.previous, s.alive, s.active, s.listed, s.queued);
+            s.shapeA = r.contact.shapeA.index;
+            s.shapeB = r.contact.shapeB.index;
+            s.cleared = false;
         });
+        x.state_.resize(x.pool_.size());
         fields(a, x.proxyToShape_, x.freeSlots_, x.dead_, x.active_, x.activated_, x.wakeRequests_,
                x.placedProxies_, x.contactMargin, x.aabbMargin);
         x.viewStale_ = true;
@@ -316,6 +357,80 @@ struct CheckpointAccess {
         }
     }
 
+    /// Every index in `values` lands inside an array of `size` (or is kNoIndex, if allowed).
+    template <typename Values>
+    static void inRange(const checkpoint_io::Reader& r, const Values& values, std::size_t size,
+                        bool noneAllowed, const char* what) {
+        constexpr std::uint32_t kNoIndex = 0xFFFFFFFF;
+        for (const auto v : values) {
+            if (!(v < size || (noneAllowed && v == kNoIndex)))
+                r.corrupt(what, " ", v, " out of range (", size, ")");
+        }
+    }
+
+    static void check(const checkpoint_io::Reader& r, const SweepAndPrune& sap) {
+        const std::size_t proxies = sap.proxies_.size();
+        for (const SweepAndPrune::Proxy& proxy : sap.proxies_) {
+            for (int axis = 0; axis < 3; ++axis) {
+                if (proxy.isIndexed)
+                    inRange(r, proxy.endpoint[axis], sap.endpoints_[axis].size(), false,
+                            "endpoint");
+            }
+        }
+        for (const auto& list : sap.endpoints_) {
+            for (const SweepAndPrune::Endpoint& e : list)
+                inRange(r, std::array{e.proxy()}, proxies, false, "endpoint's proxy");
+        }
+        for (const SweepAndPrune::Move& m : sap.moves_)
+            inRange(r, std::array{m.proxy}, proxies, false, "moved proxy");
+        for (const auto* list : {&sap.pending_, &sap.removing_, &sap.freeIds_, &sap.large_})
+            inRange(r, *list, proxies, false, "proxy");
+        for (const auto* list :
+             {&sap.excluded_, &sap.candidates_, &sap.pairs_, &sap.added_, &sap.removed_}) {
+            for (const ProxyPair& pair : *list) {
+                inRange(r, std::array{pair.first, pair.second}, proxies, false, "paired proxy");
+            }
+        }
+        if (sap.axis_ < 0 || sap.axis_ > 2)
+            r.corrupt("sweep axis ", sap.axis_);
+    }
+
+    static void check(const checkpoint_io::Reader& r, const GridBroadphase& grid) {
+        const std::size_t proxies = grid.proxies_.size();
+        const std::size_t cells = grid.cells_.size();
+        check(r, grid.oversized_);
+        for (const GridBroadphase::Cell& cell : grid.cells_) {
+            check(r, cell.sap);
+            if (cell.globalId.size() < cell.sap.proxies_.size())
+                r.corrupt("a grid cell's id table is shorter than its proxies");
+            inRange(r, cell.globalId, proxies, true, "grid cell's proxy");
+        }
+        for (const GridBroadphase::Proxy& proxy : grid.proxies_) {
+            for (const GridBroadphase::Membership& m : proxy.cells) {
+                inRange(r, std::array{m.cell}, cells, false, "proxy's cell");
+                inRange(r, std::array{m.local}, grid.cells_[m.cell].sap.proxies_.size(), false,
+                        "proxy's id in a cell");
+            }
+            inRange(r, std::array{proxy.oversizedLocal}, grid.oversized_.proxies_.size(), true,
+                    "oversized id");
+        }
+        if (grid.oversizedGlobal_.size() < grid.oversized_.proxies_.size())
+            r.corrupt("the oversized id table is shorter than its proxies");
+        inRange(r, grid.oversizedGlobal_, proxies, true, "oversized proxy");
+        for (const auto* list :
+             {&grid.oversizedList_, &grid.oversizedPublished_, &grid.dirty_, &grid.freeIds_})
+            inRange(r, *list, proxies, false, "grid proxy");
+        inRange(r, grid.dirtyCells_, cells, false, "dirty cell");
+        for (const auto* list : {&grid.excluded_, &grid.toggled_, &grid.crossPairs_, &grid.pairs_,
+                                 &grid.added_, &grid.removed_}) {
+            for (const ProxyPair& pair : *list)
+                inRange(r, std::array{pair.first, pair.second}, proxies, false, "paired proxy");
+        }
+        for (const GridBroadphase::PairCount& count : grid.counts_)
+            inRange(r, std::array{count.pair.first, count.pair.second}, proxies, false,
+                    "counted proxy");
+    }
+
     /// Sizes that must agree for the stores to be usable; a payload that passed the checksum
     /// but breaks one was not written by this code.
     static void check(const checkpoint_io::Reader& r, const World::Impl& w) {
@@ -356,19 +471,19 @@ struct CheckpointAccess {
             one(info.firstContact, edges, true, "first contact");
             one(info.awakeIndex, b.awake.size(), true, "awake index");
         }
-        const SweepAndPrune& sap = c.broadphase_;
-        const std::size_t proxies = sap.proxies_.size();
+        const std::size_t proxies = c.broadphase_.proxies_.size();
         for (std::uint32_t slot = 0; slot < shapeSlots; ++slot) {
             const ShapeRecord& shape = w.shapes.records[slot];
             one(shape.nextInBody, shapeSlots, true, "next shape");
             if (w.shapes.isAlive(slot) && (!b.isValid(shape.body) || shape.proxy >= proxies))
                 r.corrupt("a shape's body or proxy is invalid");
         }
-        for (const ContactManager::Record& record : c.pool_) {
+        for (std::size_t slot = 0; slot < c.pool_.size(); ++slot) {
+            const ContactManager::Record& record = c.pool_[slot];
             all(record.next, edges, true, "contact edge");
             all(record.previous, edges, true, "contact edge");
             const Contact& contact = record.contact;
-            if (record.alive &&
+            if (c.state_[slot].alive &&
                 (!b.isValid(contact.bodyA) || !b.isValid(contact.bodyB) ||
                  contact.shapeA.index >= shapeSlots || contact.shapeB.index >= shapeSlots))
                 r.corrupt("a contact's bodies or shapes are invalid");
@@ -378,29 +493,7 @@ struct CheckpointAccess {
         all(c.proxyToShape_, shapeSlots, true, "proxy's shape");
         all(c.wakeRequests_, n, false, "body to wake");
         all(c.placedProxies_, proxies, false, "placed proxy");
-        for (const SweepAndPrune::Proxy& proxy : sap.proxies_) {
-            for (int axis = 0; axis < 3; ++axis) {
-                if (proxy.isIndexed)
-                    all(proxy.endpoint[axis], sap.endpoints_[axis].size(), false, "endpoint");
-            }
-        }
-        for (const auto& list : sap.endpoints_) {
-            for (const SweepAndPrune::Endpoint& e : list)
-                one(e.proxy(), proxies, false, "endpoint's proxy");
-        }
-        for (const SweepAndPrune::Move& m : sap.moves_)
-            one(m.proxy, proxies, false, "moved proxy");
-        for (const auto* list : {&sap.pending_, &sap.removing_, &sap.freeIds_, &sap.large_})
-            all(*list, proxies, false, "proxy");
-        for (const auto* list :
-             {&sap.excluded_, &sap.candidates_, &sap.pairs_, &sap.added_, &sap.removed_}) {
-            for (const ProxyPair& pair : *list) {
-                one(pair.first, proxies, false, "paired proxy");
-                one(pair.second, proxies, false, "paired proxy");
-            }
-        }
-        if (sap.axis_ < 0 || sap.axis_ > 2)
-            r.corrupt("sweep axis ", sap.axis_);
+        check(r, c.broadphase_);
         const SpringStore& s = w.springs;
         if (s.state.size() != s.defs.size() || s.previousState.size() != s.defs.size())
             r.corrupt("spring arrays of different sizes");

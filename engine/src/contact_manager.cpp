@@ -25,23 +25,34 @@ Aabb sweptBounds(const Aabb& tight, const Vec3& velocity, Real h) {
             tight.upper + displacement.cwiseMax(Vec3::Zero())};
 }
 
-void carryImpulses(const Contact& previous, Contact& next) {
+// Gives `contact` the manifold `next`, with the impulses of its points that persist. Written in
+// place (no copy of the whole record), with the values a fresh copy would get: the impulses of
+// points beyond next.pointCount are zero.
+void carryImpulses(Contact& contact, const Manifold& next) {
+    const Manifold& previous = contact.manifold;
+    std::array<Real, Manifold::kMaxPoints> normalImpulse{};
+    std::array<Vec3, Manifold::kMaxPoints> tangentImpulse{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(),
+                                                          Vec3::Zero()};
     bool matched = false;
-    for (int i = 0; i < next.manifold.pointCount; ++i) {
-        const ContactPoint& point = next.manifold.points[i];
+    for (int i = 0; i < next.pointCount; ++i) {
+        const ContactPoint& point = next.points[i];
         int match = -1;
-        for (int j = 0; j < previous.manifold.pointCount && match < 0; ++j) {
-            if (previous.manifold.points[j].featureId == point.featureId)
+        for (int j = 0; j < previous.pointCount && match < 0; ++j) {
+            if (previous.points[j].featureId == point.featureId)
                 match = j;
         }
-        for (int j = 0; j < previous.manifold.pointCount && match < 0; ++j) {
-            if ((previous.manifold.points[j].position - point.position).norm() < kMatchDistance)
+        for (int j = 0; j < previous.pointCount && match < 0; ++j) {
+            if ((previous.points[j].position - point.position).norm() < kMatchDistance)
                 match = j;
         }
-        next.normalImpulse[i] = match >= 0 ? previous.normalImpulse[match] : 0;
-        next.tangentImpulse[i] = match >= 0 ? previous.tangentImpulse[match] : Vec3::Zero();
+        if (match >= 0) {
+            normalImpulse[i] = contact.normalImpulse[match];
+            tangentImpulse[i] = contact.tangentImpulse[match];
+        }
         matched = matched || match >= 0;
     }
+    contact.normalImpulse = normalImpulse;
+    contact.tangentImpulse = tangentImpulse;
     // The manifold's torsion and rolling impulse is a torque on the pair, carried as it is, in
     // world coordinates, while a point persists; the solver splits it along this step's normal
     // and clamps each part to this step's limits. In a settled pile, 1-point manifolds' normals
@@ -49,7 +60,9 @@ void carryImpulses(const Contact& previous, Contact& next) {
     // need does not (why was not pinned down; no small scene shows it): dropping the impulse
     // past 18 deg left the 5,000-body soak's settled pile awake for good, and carrying its parts
     // onto the new normal (spin about it, rolling turned across it) woke it after a drop.
-    next.angularImpulse = matched ? previous.angularImpulse : Vec3::Zero();
+    if (!matched)
+        contact.angularImpulse.setZero();
+    contact.manifold = next;
 }
 
 ContactEvent touchEvent(const Contact& contact) {
@@ -89,8 +102,8 @@ void ContactManager::removeShape(ShapeStore& shapes, std::uint32_t slot, BodySto
     while (edge != kNone) {
         const std::uint32_t contactSlot = edge >> 1;
         edge = pool_[contactSlot].next[edge & 1];  // before destroy() unlinks it
-        const Contact& contact = pool_[contactSlot].contact;
-        if (contact.shapeA == id || contact.shapeB == id)
+        const SlotState& state = state_[contactSlot];
+        if (state.shapeA == id.index || state.shapeB == id.index)
             destroy(contactSlot, bodies);
     }
 }
@@ -189,6 +202,7 @@ void ContactManager::create(const ProxyPair& pair, const ShapeStore& shapes, Bod
     if (freeSlots_.empty()) {
         slot = static_cast<std::uint32_t>(pool_.size());
         pool_.emplace_back();
+        state_.emplace_back();
     } else {
         slot = freeSlots_.back();
         freeSlots_.pop_back();
@@ -200,7 +214,7 @@ void ContactManager::create(const ProxyPair& pair, const ShapeStore& shapes, Bod
     record.contact.bodyA = shapeA.body;
     record.contact.bodyB = shapeB.body;
     record.key = pair;
-    record.alive = true;
+    state_[slot] = SlotState{.shapeA = slotA, .shapeB = slotB, .alive = true, .cleared = true};
     link(slot, 0, bodies.info[indexA]);
     link(slot, 1, bodies.info[indexB]);
     if (bodies.isAwake(indexA) || bodies.isAwake(indexB))
@@ -230,8 +244,8 @@ void ContactManager::destroy(std::uint32_t slot, BodyStore& bodies) {
         events->contactEnd.push_back(touchEvent(record.contact));
     unlink(slot, 0, bodies.info[bodies.indexOf(record.contact.bodyA)]);
     unlink(slot, 1, bodies.info[bodies.indexOf(record.contact.bodyB)]);
-    record.alive = false;
-    record.active = false;
+    state_[slot].alive = false;
+    state_[slot].active = false;
     dead_.push_back(slot);
     viewStale_ = true;
 }
@@ -259,10 +273,10 @@ std::uint32_t ContactManager::find(const ProxyPair& pair, const ShapeStore& shap
 }
 
 void ContactManager::activate(std::uint32_t slot) {
-    Record& record = pool_[slot];
-    record.active = true;
-    if (!record.listed && !record.queued) {
-        record.queued = true;
+    SlotState& state = state_[slot];
+    state.active = true;
+    if (!state.listed && !state.queued) {
+        state.queued = true;
         activated_.push_back(slot);
     }
 }
@@ -271,16 +285,16 @@ void ContactManager::flushActivations() {
     if (activated_.empty())
         return;
     std::erase_if(activated_, [this](std::uint32_t slot) {
-        Record& record = pool_[slot];
-        record.queued = false;
-        return !(record.alive && record.active && !record.listed);
+        SlotState& state = state_[slot];
+        state.queued = false;
+        return !(state.alive && state.active && !state.listed);
     });
     const auto byKey = [this](std::uint32_t a, std::uint32_t b) {
         return pool_[a].key < pool_[b].key;
     };
     std::sort(activated_.begin(), activated_.end(), byKey);
     for (const std::uint32_t slot : activated_)
-        pool_[slot].listed = true;
+        state_[slot].listed = true;
     scratch_.clear();
     std::merge(active_.begin(), active_.end(), activated_.begin(), activated_.end(),
                std::back_inserter(scratch_), byKey);
@@ -290,9 +304,9 @@ void ContactManager::flushActivations() {
 
 void ContactManager::compactActive() {
     std::erase_if(active_, [this](std::uint32_t slot) {
-        Record& record = pool_[slot];
-        record.listed = record.active;
-        return !record.active;
+        SlotState& state = state_[slot];
+        state.listed = state.active;
+        return !state.active;
     });
 }
 
@@ -316,20 +330,23 @@ void ContactManager::updateContacts(const ShapeStore& shapes, BodyStore& bodies,
     viewStale_ = true;
 }
 
+// Two passes over the active pairs. The first decides each from compact data (the slot's hot
+// state, the shapes' boxes, the bodies' velocities) and lists those that need their record;
+// the second collides them and rewrites their records, fetching each record a few pairs ahead:
+// the records are 400 bytes each, and the walk over them was a cache miss per pair.
 void ContactManager::collideActive(const ShapeStore& shapes, BodyStore& bodies,
                                    const StepContext& context) {
-    for (const std::uint32_t slot : active_) {
-        Record& record = pool_[slot];
-        const ShapeRecord& shapeA = shapes.records[record.contact.shapeA.index];
-        const ShapeRecord& shapeB = shapes.records[record.contact.shapeB.index];
+    constexpr std::size_t kAhead = 8;  // pairs fetched ahead (about the misses a core overlaps)
+    work_.clear();
+    for (std::size_t i = 0; i < active_.size(); ++i) {
+        if (i + kAhead < active_.size())
+            __builtin_prefetch(&state_[active_[i + kAhead]]);
+        const std::uint32_t slot = active_[i];
+        SlotState& state = state_[slot];
+        const ShapeRecord& shapeA = shapes.records[state.shapeA];
+        const ShapeRecord& shapeB = shapes.records[state.shapeB];
         const std::uint32_t indexA = bodies.indexOf(shapeA.body);
         const std::uint32_t indexB = bodies.indexOf(shapeB.body);
-
-        Contact next = record.contact;
-        next.manifold = Manifold{};
-        next.normalImpulse = {};
-        next.tangentImpulse.fill(Vec3::Zero());
-        next.angularImpulse.setZero();
         const Vec3 relativeVelocity =
             bodies.motion[indexB].linearVelocity - bodies.motion[indexA].linearVelocity;
         const Real margin = contactMargin + context.h * relativeVelocity.norm();
@@ -337,35 +354,63 @@ void ContactManager::collideActive(const ShapeStore& shapes, BodyStore& bodies,
         // farther apart than that, so the manifold is empty: no GJK. In a settled pile most
         // broadphase pairs are such neighbours of neighbours (2,000 of the soak's bodies: 48,070
         // pairs, 7,895 touching; narrowphase 95 -> 66 ms per step, trajectories bitwise the same).
-        if (shapeA.bounds.fattened(margin).overlaps(shapeB.bounds))
-            collide(shapeA.def.geometry, shapePose(shapeA, bodies), shapeB.def.geometry,
-                    shapePose(shapeB, bodies), margin, next.manifold);
-        carryImpulses(record.contact, next);
-        const bool was = record.contact.manifold.pointCount > 0;
-        const bool is = next.manifold.pointCount > 0;
-        if (events != nullptr) {
-            if (!was && is)
-                events->contactBegin.push_back(touchEvent(next));
-            else if (was && !is)
-                events->contactEnd.push_back(touchEvent(next));
-        }
-        if (warnings != nullptr && !was && is) {
-            warnings->checkMassRatio(next.bodyA, bodies.inertia[indexA].inverseMass, next.bodyB,
-                                     bodies.inertia[indexB].inverseMass);
-        }
-        record.contact = next;
-
-        // Touching a sleeping body wakes it -- unless the toucher is a kinematic body at rest
-        // (a resting pile on a parked platform stays asleep).
-        if (next.manifold.pointCount == 0)
+        // A record already cleared for such a pair would be written with what it holds.
+        const bool near = shapeA.bounds.fattened(margin).overlaps(shapeB.bounds);
+        if (!near && state.cleared)
             continue;
-        if (bodies.isSleeping(indexA) &&
-            (bodies.info[indexB].type == BodyType::Dynamic || bodies.isMovingKinematic(indexB)))
-            wakeRequests_.push_back(indexA);
-        if (bodies.isSleeping(indexB) &&
-            (bodies.info[indexA].type == BodyType::Dynamic || bodies.isMovingKinematic(indexA)))
-            wakeRequests_.push_back(indexB);
+        state.cleared = !near;
+        work_.push_back({slot, indexA, indexB, margin, near});
     }
+    for (std::size_t i = 0; i < work_.size(); ++i) {
+        if (i + kAhead < work_.size()) {
+            const char* ahead = reinterpret_cast<const char*>(&pool_[work_[i + kAhead].slot]);
+            for (std::size_t line = 0; line < sizeof(Record); line += 64)
+                __builtin_prefetch(ahead + line);
+        }
+        collidePair(work_[i], shapes, bodies);
+    }
+}
+
+void ContactManager::collidePair(const PairWork& work, const ShapeStore& shapes,
+                                 BodyStore& bodies) {
+    Manifold manifold;
+    if (work.near) {
+        const SlotState& state = state_[work.slot];
+        const ShapeRecord& shapeA = shapes.records[state.shapeA];
+        const ShapeRecord& shapeB = shapes.records[state.shapeB];
+        collide(shapeA.def.geometry, shapePose(shapeA, bodies), shapeB.def.geometry,
+                shapePose(shapeB, bodies), work.margin, manifold);
+    }
+    Contact& contact = pool_[work.slot].contact;
+    const bool was = contact.manifold.pointCount > 0;
+    const bool is = manifold.pointCount > 0;
+    carryImpulses(contact, manifold);
+    if (was != is)
+        reportTouch(contact, is, bodies, work.indexA, work.indexB);
+    if (is)
+        wakeTouched(bodies, work.indexA, work.indexB);
+}
+
+void ContactManager::reportTouch(const Contact& contact, bool began, const BodyStore& bodies,
+                                 std::uint32_t indexA, std::uint32_t indexB) {
+    if (events != nullptr)
+        (began ? events->contactBegin : events->contactEnd).push_back(touchEvent(contact));
+    if (warnings != nullptr && began) {
+        warnings->checkMassRatio(contact.bodyA, bodies.inertia[indexA].inverseMass, contact.bodyB,
+                                 bodies.inertia[indexB].inverseMass);
+    }
+}
+
+// Touching a sleeping body wakes it -- unless the toucher is a kinematic body at rest (a resting
+// pile on a parked platform stays asleep).
+void ContactManager::wakeTouched(const BodyStore& bodies, std::uint32_t indexA,
+                                 std::uint32_t indexB) {
+    if (bodies.isSleeping(indexA) &&
+        (bodies.info[indexB].type == BodyType::Dynamic || bodies.isMovingKinematic(indexB)))
+        wakeRequests_.push_back(indexA);
+    if (bodies.isSleeping(indexB) &&
+        (bodies.info[indexA].type == BodyType::Dynamic || bodies.isMovingKinematic(indexA)))
+        wakeRequests_.push_back(indexB);
 }
 
 std::span<const Contact> ContactManager::contacts() const {
@@ -373,7 +418,7 @@ std::span<const Contact> ContactManager::contacts() const {
         return view_;
     viewOrder_.clear();
     for (std::uint32_t slot = 0; slot < pool_.size(); ++slot) {
-        if (pool_[slot].alive)
+        if (state_[slot].alive)
             viewOrder_.push_back(slot);
     }
     std::sort(viewOrder_.begin(), viewOrder_.end(),

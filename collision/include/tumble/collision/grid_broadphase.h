@@ -39,6 +39,7 @@
 namespace tumble {
 
 class GridBroadphase {
+    friend struct CheckpointAccess;  ///< the engine's checkpoint saves and restores the state
 public:
     /// Default cell edge (m): a few times the size of a typical body (0.5-2 m), so most proxies
     /// touch 1-8 cells and a cell holds tens to hundreds of proxies.
