@@ -3,8 +3,10 @@
 
 #include <benchmark/benchmark.h>
 
+#include <ctime>
 #include <vector>
 
+#include "harness/scene.h"
 #include "scenes.h"
 #include "testkit/solver_scenes.h"
 #include "tumble/solver/constraint_solver.h"
@@ -86,5 +88,53 @@ void BM_PgsRowIteration(benchmark::State& state) {
                            benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_PgsRowIteration)->Args({1000, 10})->Args({1000, 40})->Unit(benchmark::kMicrosecond);
+
+// The contact sweeps on tumble-bench's own scenes, as its Tumble peer sets them up: ns per
+// contact row per sweep, from the solver's stage times (biased and relax sweeps) over the rows
+// of the contacts each step solved (a normal and, with friction, two tangent rows per point).
+const bench::PeerWorld* watched = nullptr;
+std::unique_ptr<bench::PeerWorld> createWatched(const bench::SceneSettings& settings) {
+    std::unique_ptr<bench::PeerWorld> world = bench::createTumble(settings);
+    watched = world.get();
+    return world;
+}
+
+double threadSeconds() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// The stage times are wall-clock: on a shared machine the step's CPU time is split in their
+// proportions, so the figure is the sweeps' CPU time.
+void BM_SceneSweepRow(benchmark::State& state, bench::SceneKind kind, int size) {
+    const bench::SceneSettings settings;
+    bench::SceneRun run({"tumble", &createWatched},
+                        bench::Scene{.name = "sweep", .size = size, .kind = kind}, settings);
+    const World& world = *bench::tumbleWorld(*watched);
+    for (int i = 0; i < 3 * kSettleSteps; ++i)
+        run.step();
+    double seconds = 0;
+    double rowSweeps = 0;
+    double rows = 0;
+    for (auto _ : state) {
+        const double start = threadSeconds();
+        run.step();
+        const double cpu = threadSeconds() - start;
+        const SolverProfile& p = world.profile().solveStages;
+        seconds += cpu * (p.velocity + p.relax) / world.profile().total;
+        rows = 0;
+        for (const Contact& c : world.contacts())
+            rows += c.manifold.pointCount * (settings.friction > 0 ? 3.0 : 1.0);
+        rowSweeps +=
+            rows * (world.solverStats().iterations + world.settings().solver.relaxIterations);
+    }
+    state.counters["contact_rows"] = rows;
+    state.counters["ns_per_row_sweep"] = rowSweeps > 0 ? 1e9 * seconds / rowSweeps : 0;
+}
+BENCHMARK_CAPTURE(BM_SceneSweepRow, pyramid20, bench::SceneKind::Pyramid, 20)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_SceneSweepRow, pile4000, bench::SceneKind::Pile, 4000)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace

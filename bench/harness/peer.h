@@ -13,6 +13,10 @@
 
 #include "tumble/core/math.h"
 
+namespace tumble {
+class World;
+}
+
 namespace tumble::bench {
 
 /// Settings every engine gets: the study's stack settings (DESIGN.md section 6).
@@ -122,6 +126,9 @@ struct Peer {
 };
 
 std::unique_ptr<PeerWorld> createTumble(const SceneSettings& settings);
+/// The World behind one of createTumble's worlds (microbenchmarks read its profile); null for
+/// another engine's.
+const World* tumbleWorld(const PeerWorld& world);
 #ifdef TUMBLE_HAVE_BULLET
 std::unique_ptr<PeerWorld> createBullet(const SceneSettings& settings);
 #endif

@@ -57,6 +57,7 @@ public:
         return first;
     }
     void step() override { world_.step(); }
+    const World& world() const { return world_; }
     Vec3 position(int body) const override { return world_.position(bodies_[body]); }
     Vec3 velocity(int body) const override { return world_.linearVelocity(bodies_[body]); }
     Real deepestPenetration() const override { return world_.solverStats().deepestPenetration; }
@@ -95,6 +96,11 @@ private:
 
 std::unique_ptr<PeerWorld> createTumble(const SceneSettings& settings) {
     return std::make_unique<TumbleWorld>(settings);
+}
+
+const World* tumbleWorld(const PeerWorld& world) {
+    const auto* tumble = dynamic_cast<const TumbleWorld*>(&world);
+    return tumble != nullptr ? &tumble->world() : nullptr;
 }
 
 }  // namespace tumble::bench

@@ -53,9 +53,14 @@ public:
                         const SolverSettings& settings);
 
 private:
+    std::span<ContactConstraint> buildConstraints(const BodyStore& bodies, const ShapeStore& shapes,
+                                                  const ContactManager& contacts,
+                                                  const StepContext& context);
+
     ConstraintSolver solver_;
     std::vector<SolverBody> solverBodies_;
-    std::vector<ContactConstraint> constraints_;
+    std::vector<ContactConstraint>
+        constraints_;  ///< reused: only grows; the first n are this step's
     std::vector<std::uint32_t> constraintContact_;  ///< contact slot of each constraint
     std::vector<PseudoVelocity> pseudo_;
     std::vector<SpringRow> springRows_;

@@ -234,9 +234,7 @@ void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
                 p.tangentImpulseA[r] = a.inverseInertia * p.tangentAngularA[r];
                 p.tangentImpulseB[r] = b.inverseInertia * p.tangentAngularB[r];
             }
-            p.tangentMass.setZero();
-            p.tangentMass(0, 0) = 1 / kTangent(0, 0);
-            p.tangentMass(1, 1) = 1 / kTangent(1, 1);
+            p.tangentMass = {1 / kTangent(0, 0), 1 / kTangent(1, 1)};
             p.approachSpeed = relativeVelocity(a, b, p).dot(c.normal);
             const Impact impact = impactWithinStep(p.separation, p.approachSpeed + p.supportSpeed,
                                                    p.normalAcceleration, h);
@@ -275,6 +273,9 @@ void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
         prepareAngularFriction(a, b, c, settings.warmStart);
     }
     islands_.prepare(bodies, constraints);
+    factors_.resize(constraints.size());
+    for (NormalFactor& factor : factors_)
+        factor.set = NormalFactor::kNone;
     // Warm start only once every approach speed is measured: applied point by point above, the
     // cached impulses of earlier contacts leaked into the approach speeds of later ones, and a
     // row of touching elastic balls (Newton's cradle) gained energy with every collision.
@@ -296,6 +297,8 @@ Real ContactSolver::solveVelocitySweep(std::span<SolverBody> bodies,
                                        const SolverSettings& settings, Real inverseH, Real bias) {
     const Real omega = settings.relaxation;
     Real largestChange = 0;
+    // The change is read only to stop early; measuring it was a tenth of the friction rows.
+    const bool measure = settings.tolerance > 0;
     for (ContactConstraint& c : constraints) {
         SolverBody& a = bodies[c.bodyA];
         SolverBody& b = bodies[c.bodyB];
@@ -316,7 +319,7 @@ Real ContactSolver::solveVelocitySweep(std::span<SolverBody> bodies,
                 if (settings.friction == FrictionModel::Coupled) {
                     next = old + omega * (solveDisc(p.tangent, old, vt, limit) - old);
                 } else {
-                    next = (old - omega * (p.tangentMass.topLeftCorner<2, 2>() * vt))
+                    next = (old - omega * Vec2(p.tangentMass[0] * vt(0), p.tangentMass[1] * vt(1)))
                                .cwiseMax(-limit)
                                .cwiseMin(limit);
                 }
@@ -329,13 +332,16 @@ Real ContactSolver::solveVelocitySweep(std::span<SolverBody> bodies,
                 b.angularVelocity +=
                     delta.x() * p.tangentImpulseB[0] + delta.y() * p.tangentImpulseB[1];
                 p.tangentImpulse = {next.x(), next.y()};
-                largestChange = std::max(largestChange, (p.tangent.block * delta).norm());
+                if (measure)
+                    largestChange = std::max(largestChange, (p.tangent.block * delta).norm());
             }
         }
         if (c.spinMass > 0 || c.rollingActive)
             largestChange = std::max(largestChange, solveAngularFriction(a, b, c, omega));
-        if (c.normalGroup == NormalIslands::kNone)
-            solveNormals(a, b, c, settings, inverseH, bias, largestChange);
+        if (c.normalGroup == NormalIslands::kNone) {
+            solveNormals(a, b, c, factors_[&c - constraints.data()], settings, inverseH, bias,
+                         largestChange);
+        }
     }
     if (!islands_.empty()) {
         largestChange =
@@ -387,8 +393,8 @@ Real ContactSolver::solveAngularFriction(SolverBody& a, SolverBody& b, ContactCo
 }
 
 void ContactSolver::solveNormals(SolverBody& a, SolverBody& b, ContactConstraint& c,
-                                 const SolverSettings& settings, Real inverseH, Real bias,
-                                 Real& largestChange) const {
+                                 NormalFactor& factor, const SolverSettings& settings,
+                                 Real inverseH, Real bias, Real& largestChange) const {
     const Real omega = settings.relaxation;
     const int n = c.pointCount;
     Vec4 old = Vec4::Zero();
@@ -400,7 +406,7 @@ void ContactSolver::solveNormals(SolverBody& a, SolverBody& b, ContactConstraint
         gap(i) = normalSpeed(a, b, c.normal, p) - normalTarget(p, bias, settings.slop, inverseH);
     }
     Vec4 exact = old;
-    if (n > 1 && solveNormalBlock(c.normalBlock, n, gap - c.normalBlock * old, exact)) {
+    if (n > 1 && solveNormalBlock(c.normalBlock, n, gap - c.normalBlock * old, exact, factor)) {
         next = (old + omega * (exact - old)).cwiseMax(0);
         for (int i = 0; i < n; ++i)
             applyNormal(a, b, c.normal, c.points[i], next(i) - old(i));
@@ -420,9 +426,11 @@ void ContactSolver::solveNormals(SolverBody& a, SolverBody& b, ContactConstraint
     }
     // The velocity change each point sees: a shift of load between the legs of a face, which the
     // block's minimum-norm choice may make, moves nothing and does not count.
-    const Vec4 change = c.normalBlock * (next - old);
-    for (int i = 0; i < n; ++i)
-        largestChange = std::max(largestChange, std::abs(change(i)));
+    if (settings.tolerance > 0) {
+        const Vec4 change = c.normalBlock * (next - old);
+        for (int i = 0; i < n; ++i)
+            largestChange = std::max(largestChange, std::abs(change(i)));
+    }
 }
 
 Real ContactSolver::residual(std::span<const SolverBody> bodies,

@@ -22,59 +22,58 @@ constexpr std::array<unsigned, 16> kSetsBySize = {0b1111, 0b0111, 0b1011, 0b1101
                                                   0b0101, 0b0110, 0b1001, 0b1010, 0b1100, 0b0001,
                                                   0b0010, 0b0100, 0b1000, 0b0000};
 
-// Solves (K_SS + eps 1) x = -c_S for the rows in `set` by Cholesky; false if not positive.
-bool solveActive(const Mat4& k, unsigned set, const Vec4& c, Real eps, Vec4& x) {
-    std::array<int, 4> rows{};
-    int m = 0;
+// Factors K_SS + eps 1 = L L' for the rows in `set`; false if not positive.
+bool factorActive(const Mat4& k, unsigned set, Real eps, NormalFactor& f) {
+    f.set = NormalFactor::kNone;
+    f.size = 0;
     for (int i = 0; i < 4; ++i) {
         if (set & (1u << i))
-            rows[m++] = i;
+            f.rows[f.size++] = i;
     }
-    Real l[4][4] = {};
+    const int m = f.size;
     for (int i = 0; i < m; ++i) {
         for (int j = 0; j <= i; ++j) {
-            Real sum = k(rows[i], rows[j]) + (i == j ? eps : 0);
+            Real sum = k(f.rows[i], f.rows[j]) + (i == j ? eps : 0);
             for (int p = 0; p < j; ++p)
-                sum -= l[i][p] * l[j][p];
+                sum -= f.l[i][p] * f.l[j][p];
             if (i == j) {
                 if (!(sum > 0))
                     return false;
-                l[i][i] = std::sqrt(sum);
+                f.l[i][i] = std::sqrt(sum);
             } else {
-                l[i][j] = sum / l[j][j];
+                f.l[i][j] = sum / f.l[j][j];
             }
         }
     }
-    // Forward and back substitution with L L' = K_SS + eps 1.
-    const auto substitute = [&](const Real* rhs, Real* out) {
-        Real y[4] = {};
-        for (int i = 0; i < m; ++i) {
-            Real sum = rhs[i];
-            for (int p = 0; p < i; ++p)
-                sum -= l[i][p] * y[p];
-            y[i] = sum / l[i][i];
-        }
-        for (int i = m - 1; i >= 0; --i) {
-            Real sum = y[i];
-            for (int p = i + 1; p < m; ++p)
-                sum -= l[p][i] * out[p];
-            out[i] = sum / l[i][i];
-        }
-    };
-    Real rhs[4] = {};
+    f.set = set;
+    return true;
+}
+
+// Solves L L' x_S = -c_S by forward and back substitution; x is zero off the set.
+void solveFactored(const NormalFactor& f, const Vec4& c, Vec4& x) {
+    const int m = f.size;
+    Real y[4] = {};
+    for (int i = 0; i < m; ++i) {
+        Real sum = -c(f.rows[i]);
+        for (int p = 0; p < i; ++p)
+            sum -= f.l[i][p] * y[p];
+        y[i] = sum / f.l[i][i];
+    }
     Real z[4] = {};
-    for (int i = 0; i < m; ++i)
-        rhs[i] = -c(rows[i]);
-    substitute(rhs, z);
+    for (int i = m - 1; i >= 0; --i) {
+        Real sum = y[i];
+        for (int p = i + 1; p < m; ++p)
+            sum -= f.l[p][i] * z[p];
+        z[i] = sum / f.l[i][i];
+    }
     x.setZero();
     for (int i = 0; i < m; ++i)
-        x(rows[i]) = z[i];
-    return true;
+        x(f.rows[i]) = z[i];
 }
 
 }  // namespace
 
-bool solveNormalBlock(const Mat4& k, int n, const Vec4& c, Vec4& lambda) {
+bool solveNormalBlock(const Mat4& k, int n, const Vec4& c, Vec4& lambda, NormalFactor& factor) {
     const unsigned all = (1u << n) - 1;
     const Real eps = kRegularisation * k.diagonal().head(n).maxCoeff();
     const Real tolerance = std::max(kTolerance * c.head(n).cwiseAbs().maxCoeff(), kFloor);
@@ -90,10 +89,14 @@ bool solveNormalBlock(const Mat4& k, int n, const Vec4& c, Vec4& lambda) {
         const unsigned set = attempt < 0 ? guess : kSetsBySize[attempt];
         if ((set & ~all) != 0 || (attempt >= 0 && set == guess))
             continue;
-        if (set != 0 && !solveActive(k, set, c, eps, x))
-            continue;
-        if (set == 0)
+        if (set == 0) {
             x.setZero();
+        } else {
+            // K is fixed within the step: the factor of last sweep's set is still good.
+            if (factor.set != set && !factorActive(k, set, eps, factor))
+                continue;
+            solveFactored(factor, c, x);
+        }
         const Vec4 w = k * x + c;
         bool ok = true;
         for (int i = 0; i < n && ok; ++i) {

@@ -33,8 +33,9 @@ using Vec4 = Eigen::Matrix<Real, 4, 1>;
 /// Solves the LCP above for the first n (1..4) rows of k and c. `lambda` comes in as the last
 /// answer (its positive entries are the first active set tried) and on success goes out as the
 /// new one (entries past n zero); returns false when no active set checks out to rounding (a
-/// degenerate block), leaving lambda unchanged.
-bool solveNormalBlock(const Mat4& k, int n, const Vec4& c, Vec4& lambda);
+/// degenerate block), leaving lambda unchanged. `factor` is the cache of this k (reset to
+/// NormalFactor{} whenever k changes).
+bool solveNormalBlock(const Mat4& k, int n, const Vec4& c, Vec4& lambda, NormalFactor& factor);
 
 // v_n = n . (vB + wB x rB - vA - wA x rA), with the angular parts precomputed by prepare().
 inline Real normalSpeed(const SolverBody& a, const SolverBody& b, const Vec3& n,

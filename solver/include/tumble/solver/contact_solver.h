@@ -77,6 +77,17 @@ struct DiscBlock {
     bool set(const Eigen::Matrix<Real, 2, 2>& k);
 };
 
+/// The Cholesky factor L of K_SS + eps 1 for one active set S. K (normal_block.h) is fixed for a
+/// step and the active set rarely changes between sweeps, so each manifold keeps the last one it
+/// factored: recomputing it at every call was a third of the block's time.
+struct NormalFactor {
+    static constexpr unsigned kNone = ~0u;
+    unsigned set = kNone;       ///< S as a bit mask; kNone: nothing factored (reset per step)
+    int size = 0;               ///< |S|
+    std::array<int, 4> rows{};  ///< the rows of S, ascending
+    Real l[4][4] = {};          ///< lower triangle of L, |S| x |S|
+};
+
 struct ContactConstraintPoint {
     Vec3 rA = Vec3::Zero();  ///< from A's centre of mass to the point (world, m)
     Vec3 rB = Vec3::Zero();  ///< from B's centre of mass to the point (world, m)
@@ -85,11 +96,11 @@ struct ContactConstraintPoint {
     std::array<Real, 2> tangentImpulse{};  ///< along tangent1, tangent2 (N s)
 
     // Filled by prepare().
-    Real normalMass = 0;              ///< effective mass along the normal (kg)
-    DiscBlock tangent;                ///< K on the tangent plane: slip velocity per impulse (1/kg)
-    Mat3 tangentMass = Mat3::Zero();  ///< diagonal: 1 / K_tt of each tangent row (kg), box model
-    Vec3 angularA = Vec3::Zero();     ///< rA x n: A's angular normal Jacobian (m)
-    Vec3 angularB = Vec3::Zero();     ///< rB x n (m)
+    Real normalMass = 0;  ///< effective mass along the normal (kg)
+    DiscBlock tangent;    ///< K on the tangent plane: slip velocity per impulse (1/kg)
+    std::array<Real, 2> tangentMass{};      ///< 1 / K_tt of each tangent row (kg), box model
+    Vec3 angularA = Vec3::Zero();           ///< rA x n: A's angular normal Jacobian (m)
+    Vec3 angularB = Vec3::Zero();           ///< rB x n (m)
     Vec3 angularImpulseA = Vec3::Zero();    ///< IA^-1 (rA x n): A's spin per unit normal impulse
     Vec3 angularImpulseB = Vec3::Zero();    ///< IB^-1 (rB x n)
     std::array<Vec3, 2> tangentAngularA{};  ///< rA x t_k for the two tangents (m)
@@ -162,7 +173,8 @@ public:
     void prepare(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints, Real h,
                  const SolverSettings& settings);
     /// One PGS sweep over the contacts with the given bias factor; returns the largest velocity
-    /// change an impulse made (m/s).
+    /// change an impulse made (m/s). With settings.tolerance 0 nothing reads it, and only the
+    /// angular rows and the exact groups are measured.
     Real solveVelocitySweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                             const SolverSettings& settings, Real inverseH, Real bias);
     /// Largest complementarity residual of the contacts at the current velocities (m/s).
@@ -172,13 +184,14 @@ public:
 
 private:
     Real solveAngularFriction(SolverBody& a, SolverBody& b, ContactConstraint& c, Real omega) const;
-    void solveNormals(SolverBody& a, SolverBody& b, ContactConstraint& c,
+    void solveNormals(SolverBody& a, SolverBody& b, ContactConstraint& c, NormalFactor& factor,
                       const SolverSettings& settings, Real inverseH, Real bias,
                       Real& largestChange) const;
 
     NormalIslands islands_;                  ///< normal rows of small, ill-conditioned groups,
                                              ///< solved exactly
     std::vector<SolverBody> supportBodies_;  ///< scratch of addSupportAcceleration
+    std::vector<NormalFactor> factors_;      ///< each manifold's block factor, this step
 };
 
 }  // namespace tumble
