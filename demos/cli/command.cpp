@@ -5,8 +5,8 @@
 #include <iostream>
 
 #include "run.h"
-#include "sweep.h"
 #include "serve.h"
+#include "sweep.h"
 #include "tumble/scene/scene.h"
 
 namespace tumble::cli {

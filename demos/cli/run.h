@@ -31,9 +31,9 @@ struct RunOptions {
     /// Called with the state at the start, after every step, and once more at the end
     /// (end = true): how a study measures a run (measures.h) without a step loop of its own.
     std::function<void(const BuiltScene&, bool end)> observe;
-    std::string replay;        ///< replay file for the viewer ("" = none; docs/replay.md)
-    std::string gltf;          ///< animated glTF binary, .glb ("" = none)
-    Real replayRate = 60;      ///< frames per second (Hz) of the replay and the glTF, > 0
+    std::string replay;    ///< replay file for the viewer ("" = none; docs/replay.md)
+    std::string gltf;      ///< animated glTF binary, .glb ("" = none)
+    Real replayRate = 60;  ///< frames per second (Hz) of the replay and the glTF, > 0
 };
 
 /// Energy of the dynamic bodies and springs (J). Potential is -m g.c with each body's gravity
