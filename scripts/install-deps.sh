@@ -9,6 +9,7 @@ packages=(
   libccd-dev                             # GJK/EPA/MPR narrowphase
   libqhull-dev                           # convex hulls (Qhull::qhull_r)
   nlohmann-json3-dev                     # JSON reports and scene files
+  libtinyobjloader-dev libpng-dev        # scene files' OBJ meshes and PNG height fields (optional)
   libcli11-dev                           # command lines
   libgtest-dev libgmock-dev              # unit tests
   libbenchmark-dev                       # micro-benchmarks
