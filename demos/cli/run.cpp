@@ -363,6 +363,7 @@ int runScene(const Scene& scene, const RunOptions& options, std::ostream& out, s
         if (world.bodyType(b) == BodyType::Dynamic && !world.isAwake(b))
             ++s.bodiesAsleep;
     }
+    s.warnings = scene.warnings;  // loading's (mesh files), then the world's
     for (const Warning& w : world.warnings())
         s.warnings.push_back(describe(w));
     if (world.droppedWarnings() > 0)

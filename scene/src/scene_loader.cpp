@@ -65,7 +65,11 @@ WorldDef parseWorld(JsonObject o) {
     return w;
 }
 
-Shape parseGeometry(JsonObject& o, const std::string& type) {
+Shape parseGeometry(JsonObject& o, const std::string& type, const ShapeSource& source) {
+    if (type == "mesh")
+        return meshShape(parseMeshData(o, source), o.path());
+    if (type == "heightField")
+        return heightFieldShape(parseHeightFieldData(o, source), o.path());
     if (type == "sphere")
         return Sphere{o.positive("radius", Sphere{}.radius)};
     if (type == "box") {
@@ -103,14 +107,16 @@ Shape parseGeometry(JsonObject& o, const std::string& type) {
 
 }  // namespace
 
-ShapeDef parseShape(const Json& value, const std::string& path, const Materials& materials) {
+ShapeDef parseShape(const Json& value, const std::string& path, const Materials& materials,
+                    const ShapeSource& source) {
     JsonObject o(value, path);
     if (!o.has("type"))
         failAt(o.pathOf("type"), "is required");
-    const std::string type =
-        o.choice("type", "", {"sphere", "box", "capsule", "cylinder", "half-space", "hull"});
+    const std::string type = o.choice(
+        "type", "",
+        {"sphere", "box", "capsule", "cylinder", "half-space", "hull", "mesh", "heightField"});
     ShapeDef def;
-    def.geometry = parseGeometry(o, type);
+    def.geometry = parseGeometry(o, type, source);
     def.localPose.position = o.vec3("position", Vec3::Zero());
     def.localPose.rotation = o.orientation("orientation");
     def.material = materialAt(o, "material", materials);
@@ -141,7 +147,7 @@ CollisionFilter parseFilter(JsonObject& o) {
 namespace {
 
 BodySpec parseBody(const Json& value, const std::string& path, std::size_t index,
-                   const Materials& materials) {
+                   const Materials& materials, const ShapeSource& source) {
     JsonObject o(value, path);
     BodySpec b;
     b.path = path;
@@ -170,7 +176,7 @@ BodySpec parseBody(const Json& value, const std::string& path, std::size_t index
             failAt(o.pathOf("shapes"), "expected an array, got ", typeName(*shapes));
         for (std::size_t i = 0; i < shapes->size(); ++i)
             b.shapes.push_back(
-                parseShape((*shapes)[i], indexPath(o.pathOf("shapes"), i), materials));
+                parseShape((*shapes)[i], indexPath(o.pathOf("shapes"), i), materials, source));
     }
     if (b.mass && b.shapes.empty())
         failAt(o.pathOf("mass"), "needs shapes to take its inertia from");
@@ -242,10 +248,11 @@ Materials parseMaterials(JsonObject o, const Json& document) {
 
 }  // namespace
 
-Scene parseScene(const Json& document, const std::string& name) {
+Scene parseScene(const Json& document, const std::string& name, const std::string& directory) {
     JsonObject root(document, "");
     Scene scene;
     scene.name = name;
+    const ShapeSource source{directory, &scene.warnings};
     scene.description = root.string("description", "");
     scene.duration = root.positive("duration", scene.duration);
     scene.world = parseWorld(root.object("world"));
@@ -254,8 +261,8 @@ Scene parseScene(const Json& document, const std::string& name) {
         if (!bodies->is_array())
             failAt("bodies", "expected an array, got ", typeName(*bodies));
         for (std::size_t i = 0; i < bodies->size(); ++i)
-            scene.bodies.push_back(
-                parseBody((*bodies)[i], indexPath("bodies", i), scene.bodies.size(), materials));
+            scene.bodies.push_back(parseBody((*bodies)[i], indexPath("bodies", i),
+                                             scene.bodies.size(), materials, source));
     }
     if (const Json* generators = root.find("generators")) {
         if (!generators->is_array())
@@ -479,7 +486,8 @@ Scene loadScene(const std::string& nameOrFile, const std::vector<std::string>& o
     for (const std::string& o : overrides)
         applyOverride(document, o);
     try {
-        Scene scene = parseScene(document, fs::path(path).stem().string());
+        Scene scene = parseScene(document, fs::path(path).stem().string(),
+                                 fs::path(path).parent_path().string());
         scene.source = path;
         scene.lines = std::move(lines);
         return scene;

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "tumble/collision/mesh_data.h"
 #include "tumble/scene/json_reader.h"
 #include "tumble/scene/scene.h"
 
@@ -27,9 +28,27 @@ Material materialAt(JsonObject& o, const std::string& key, const Materials& mate
 /// The member "filter": {"category": bits, "mask": bits}, each an integer in [0, 2^32).
 CollisionFilter parseFilter(JsonObject& o);
 
+/// Where a shape's files are found (relative names: beside the scene file) and where its load
+/// warnings go (Scene::warnings).
+struct ShapeSource {
+    std::string directory;                         ///< "" : the working directory
+    std::vector<std::string>* warnings = nullptr;  ///< null: dropped
+};
+
 /// One shape of a body: {"type", geometry keys, "position", "orientation", "material",
 /// "filter"}.
-ShapeDef parseShape(const Json& value, const std::string& path, const Materials& materials);
+ShapeDef parseShape(const Json& value, const std::string& path, const Materials& materials,
+                    const ShapeSource& source = {});
+
+/// A "mesh" shape's geometry (mesh_shapes.cpp): "vertices" and "triangles", or "file" (.obj,
+/// .stl). Checked (mesh_io.h); refusals name the key or element.
+TriangleMeshData parseMeshData(JsonObject& o, const ShapeSource& source);
+/// A "heightField" shape's geometry: "heights" (rows) and "spacing", or "file" (a PNG),
+/// "spacing", "heightScale", "heightOffset".
+HeightFieldData parseHeightFieldData(JsonObject& o, const ShapeSource& source);
+/// The Shape of checked mesh data; refused at `path` while this version has no mesh shapes.
+Shape meshShape(TriangleMeshData mesh, const std::string& path);
+Shape heightFieldShape(HeightFieldData field, const std::string& path);
 
 /// Appends the bodies of one generator ("stack", "pyramid", "wall", "grid", "string", "net")
 /// to scene.bodies (and a string's or net's description to scene.lumped).

@@ -83,6 +83,9 @@ struct Scene {
     std::vector<SpringSpec> springs;
     std::vector<JointSpec> joints;
     OutputSpec outputs;
+    /// What loading found legal but suspect (a mesh file's degenerate triangles, dropped), one
+    /// line each, naming the shape; the command prints them with the world's warnings.
+    std::vector<std::string> warnings;
 };
 
 /// A scene made real: the world and the ids of its bodies and shapes in scene order.
@@ -95,8 +98,9 @@ struct BuiltScene {
     std::vector<JointId> joints;     ///< joints[i] is scene.joints[i]
 };
 
-/// Parses a scene document (already overridden). `name` names it in messages.
-Scene parseScene(const Json& document, const std::string& name);
+/// Parses a scene document (already overridden). `name` names it in messages; `directory` is
+/// where the files it names (meshes, height fields) are found ("": the working directory).
+Scene parseScene(const Json& document, const std::string& name, const std::string& directory = "");
 
 /// Body selections for outputs and the command line: each item is a scene index ("3"), a body
 /// name ("ball", "net[0][4]") or a net's corners ("net.corners", four bodies). `where` names the
