@@ -7,12 +7,15 @@
 // every penetrating contact (an infinite threshold). SceneSettings::speculativeContacts = false
 // drops the contacts that do not touch yet from the solve. Bullet has no spring elements
 // to match Tumble's implicit threads, so a net is point-mass spheres that collide with nothing
-// (collision mask 0) pulled by the harness's thread forces, applied before each step.
+// (collision mask 0) pulled by the harness's thread forces, applied before each step. Terrain:
+// btHeightfieldTerrainShape and btBvhTriangleMeshShape as they come (no internal-edge utility).
 
+#include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
 #include <btBulletDynamicsCommon.h>
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <memory>
 
 #include "peer.h"
@@ -78,6 +81,36 @@ public:
             shape =
                 own(std::make_unique<btCapsuleShapeZ>(narrow(b.radius), narrow(2 * b.halfLength)));
         return index(add(shape, b.mass, b.position, b.orientation));
+    }
+    // Bullet puts a height field's origin at the middle of its box and spaces samples 1 apart
+    // before its local scaling: the body sits at the middle so sample (i, j) lands on
+    // (i dx, j dy, h). flipQuadEdges splits cells along (i, j)-(i+1, j+1), as terrainMesh does.
+    bool addHeightField(const HeightFieldData& field) override {
+        std::vector<float>& heights =
+            heightData_.emplace_back(field.heights.begin(), field.heights.end());
+        const auto [low, high] = std::minmax_element(field.heights.begin(), field.heights.end());
+        auto shape = std::make_unique<btHeightfieldTerrainShape>(
+            static_cast<int>(field.columns), static_cast<int>(field.rows), heights.data(),
+            narrow(*low), narrow(*high), 2, true);
+        shape->setLocalScaling(btVector3(narrow(field.spacingX), narrow(field.spacingY), 1));
+        const Vec3 middle(0.5 * (field.columns - 1) * field.spacingX,
+                          0.5 * (field.rows - 1) * field.spacingY, 0.5 * (*low + *high));
+        add(own(std::move(shape)), 0, middle, Quat::Identity());
+        return true;
+    }
+    bool addTriangleMesh(const TriangleMeshData& mesh) override {
+        MeshArrays& arrays = meshData_.emplace_back();
+        for (const Vec3& v : mesh.vertices)
+            arrays.vertices.insert(arrays.vertices.end(),
+                                   {narrow(v.x()), narrow(v.y()), narrow(v.z())});
+        for (const auto& t : mesh.triangles)
+            arrays.indices.insert(arrays.indices.end(), t.begin(), t.end());
+        arrays.mesh = std::make_unique<btTriangleIndexVertexArray>(
+            static_cast<int>(mesh.triangles.size()), arrays.indices.data(), 3 * sizeof(int),
+            static_cast<int>(mesh.vertices.size()), arrays.vertices.data(), 3 * sizeof(btScalar));
+        add(own(std::make_unique<btBvhTriangleMeshShape>(arrays.mesh.get(), true)), 0, Vec3::Zero(),
+            Quat::Identity());
+        return true;
     }
     int addPointMass(const Vec3& position, const Vec3& velocity, Real mass, Real radius) override {
         btCollisionShape* shape = own(std::make_unique<btSphereShape>(narrow(radius)));
@@ -157,6 +190,14 @@ private:
     bool speculative_;
     btStaticPlaneShape plane_{btVector3(0, 0, 1), 0};
     btBoxShape cube_;
+    // Static meshes' arrays: Bullet reads them in place, so they outlive the shapes.
+    struct MeshArrays {
+        std::vector<int> indices;
+        std::vector<btScalar> vertices;
+        std::unique_ptr<btTriangleIndexVertexArray> mesh;
+    };
+    std::deque<MeshArrays> meshData_;
+    std::deque<std::vector<float>> heightData_;
     std::vector<std::unique_ptr<btCollisionShape>> shapes_;  // outlive the bodies (destroyed after)
     std::vector<btRigidBody*> bodies_;
 };

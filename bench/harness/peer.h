@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "tumble/collision/mesh_data.h"
 #include "tumble/core/math.h"
 
 namespace tumble {
@@ -101,6 +102,14 @@ public:
     virtual int addBody(const BodySpec& /*body*/) { return -1; }
     /// Why addBody returned -1, when the engine can say more than "cannot".
     virtual std::string refusal() const { return "cannot add the body"; }
+    /// A static height field in the world frame (terrain.h: sample (i, j) at (i dx, j dy, h));
+    /// false when the engine or its adapter has none (see terrainRefusal).
+    virtual bool addHeightField(const HeightFieldData& /*field*/) { return false; }
+    /// A static triangle mesh in the world frame (counter-clockwise seen from the outside);
+    /// false when the engine or its adapter has none (see terrainRefusal).
+    virtual bool addTriangleMesh(const TriangleMeshData& /*mesh*/) { return false; }
+    /// Why addHeightField or addTriangleMesh returned false.
+    virtual std::string terrainRefusal() const { return "no static meshes in this adapter"; }
     /// The whole net with the engine's own springs; the first node's index (row-major), or -1
     /// when the engine has none (the harness then applies the threads' forces to point masses).
     virtual int addNet(const NetSpec& /*net*/) { return -1; }

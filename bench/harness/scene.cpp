@@ -1,5 +1,6 @@
 // The harness's scenes (scene.h). Piles: boxes, spheres and capsules in turn, 700 kg/m^3,
-// dropped in layers of a grid into a walled container about five layers deep. Nets: lumped.h's
+// dropped in layers of a grid into a walled container about five layers deep, or onto
+// terrain.h's bowl (terrain piles). Nets: lumped.h's
 // net thrown open in free space, so the exact answer conserves the kinetic plus thread energy.
 
 #include "scene.h"
@@ -85,6 +86,10 @@ SceneRun::SceneRun(const Peer& peer, const Scene& scene, const SceneSettings& ba
         case SceneKind::Pile:
             buildPile();
             break;
+        case SceneKind::TerrainPile:
+        case SceneKind::MeshPile:
+            buildTerrainPile();
+            break;
         case SceneKind::Net:
             buildNet();
             break;
@@ -116,6 +121,44 @@ void SceneRun::buildPile() {
             return;
         }
     }
+}
+
+// The pile's bodies in layers over the middle of the bowl, each 0.4 m above the terrain under
+// it plus a pitch per layer; no walls: the bowl holds them.
+void SceneRun::buildTerrainPile() {
+    terrain_ = rollingTerrain();
+    const bool made = scene_.kind == SceneKind::TerrainPile
+                          ? world_->addHeightField(terrain_)
+                          : world_->addTriangleMesh(terrainMesh(terrain_));
+    if (!made) {
+        skipped_ = world_->terrainRefusal();
+        return;
+    }
+    constexpr int kPerSide = 12;
+    const Real middle = 0.5 * (terrain_.columns - 1) * terrain_.spacingX;
+    for (int k = 0; k < scene_.size; ++k) {
+        const int cell = k % (kPerSide * kPerSide);
+        const Real x = middle + kPilePitch * (cell % kPerSide - 0.5 * (kPerSide - 1));
+        const Real y = middle + kPilePitch * (cell / kPerSide - 0.5 * (kPerSide - 1));
+        const Vec3 p(
+            x, y, terrainHeight(terrain_, x, y) + 0.4 + kPilePitch * (k / (kPerSide * kPerSide)));
+        start_.push_back(p);
+        if (world_->addBody(pileBody(k, p)) < 0) {
+            skipped_ = world_->refusal();
+            return;
+        }
+    }
+}
+
+// Piles: in the container (or over the terrain and above it), by more than the largest body.
+bool SceneRun::pileInside(const Vec3& p) const {
+    if (!finite(p))
+        return false;
+    if (scene_.kind == SceneKind::Pile)
+        return p.head<2>().cwiseAbs().maxCoeff() < containerHalf_ && p.z() > -0.2;
+    const Real side = (terrain_.columns - 1) * terrain_.spacingX;
+    return p.x() > 0 && p.y() > 0 && p.x() < side && p.y() < side &&
+           p.z() > terrainHeight(terrain_, p.x(), p.y()) - 0.2;
 }
 
 void SceneRun::buildNet() {
@@ -202,14 +245,12 @@ void SceneRun::measure(double time) {
             }
             break;
         }
-        case SceneKind::Pile: {
+        case SceneKind::Pile:
+        case SceneKind::TerrainPile:
+        case SceneKind::MeshPile: {
             metrics_.deepest = std::max(metrics_.deepest, world_->deepestPenetration());
             for (std::size_t i = 0; i < start_.size() && !collapsed; ++i) {
-                const Vec3 p = world_->position(static_cast<int>(i));
-                // Out through a wall or the floor, by more than the largest body.
-                const bool inside =
-                    finite(p) && p.head<2>().cwiseAbs().maxCoeff() < containerHalf_ && p.z() > -0.2;
-                if (!inside) {
+                if (!pileInside(world_->position(static_cast<int>(i)))) {
                     metrics_.collapsedAt = time;
                     break;
                 }

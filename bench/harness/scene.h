@@ -8,10 +8,13 @@
 #include <vector>
 
 #include "peer.h"
+#include "terrain.h"
 
 namespace tumble::bench {
 
-enum class SceneKind { Stack, Pyramid, Pile, Net };
+/// TerrainPile and MeshPile: the pile dropped on terrain.h's bowl, as a height field or as the
+/// same surface in triangles.
+enum class SceneKind { Stack, Pyramid, Pile, Net, TerrainPile, MeshPile };
 
 struct Scene {
     std::string name;
@@ -27,6 +30,11 @@ struct Scene {
     bool explicitThreads = false;
 
     bool planar() const { return kind == SceneKind::Stack || kind == SceneKind::Pyramid; }
+    /// Piles land once, untimed, then are timed in windows (tumble-bench's main).
+    bool pile() const {
+        return kind == SceneKind::Pile || kind == SceneKind::TerrainPile ||
+               kind == SceneKind::MeshPile;
+    }
 };
 
 /// Builds a stack or pyramid in `world`; returns the cubes' start positions (the top cube last),
@@ -42,8 +50,8 @@ struct Metrics {
     double deepest;      ///< deepest penetration over the run (m); NaN for nets
     double energyError;  ///< nets: largest |E - E0| / E0 over the run (E: kinetic + thread)
     /// Stacks, pyramids: when a cube first moved 0.5 m; piles: when a body first left the
-    /// container or went non-finite; nets: when a node went non-finite or the energy grew
-    /// tenfold (blew up). -1: never (s).
+    /// container (terrain piles: fell through or off the terrain) or went non-finite; nets: when a
+    /// node went non-finite or the energy grew tenfold (blew up). -1: never (s).
     double collapsedAt = -1;
 };
 
@@ -72,7 +80,9 @@ private:
         int b;
     };
     void buildPile();
+    void buildTerrainPile();
     void buildNet();
+    bool pileInside(const Vec3& p) const;
     double netEnergy() const;
 
     Scene scene_;
@@ -81,7 +91,8 @@ private:
     std::string skipped_;
     std::vector<Vec3> start_;
     Metrics metrics_;
-    Real containerHalf_ = 0;  // piles: half the container's inside width (m)
+    Real containerHalf_ = 0;   // piles: half the container's inside width (m)
+    HeightFieldData terrain_;  // terrain piles: the ground's heights
     // Nets.
     NetSpec net_;
     bool harnessThreads_ = false;  // the engine has no springs: this applies the threads

@@ -56,6 +56,11 @@ public:
         bodies_.insert(bodies_.end(), lumped.nodes.begin(), lumped.nodes.end());
         return first;
     }
+    // Tumble's mesh shapes are built on another branch (issue 26); these two are what that merge
+    // replaces, with the terrain's HeightFieldData and TriangleMeshData as they are.
+    bool addHeightField(const HeightFieldData& /*field*/) override { return false; }
+    bool addTriangleMesh(const TriangleMeshData& /*mesh*/) override { return false; }
+    std::string terrainRefusal() const override { return "not supported yet (no mesh shapes)"; }
     void step() override { world_.step(); }
     const World& world() const { return world_; }
     Vec3 position(int body) const override { return world_.position(bodies_[body]); }
