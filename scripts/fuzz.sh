@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Fuzzes the scene-file loader and the narrowphase with libFuzzer for a time budget each:
+# Fuzzes the scene-file loader and the narrowphase with libFuzzer for a time budget each, and the
+# OBJ and PNG loaders (small, one library call each) for a third of it:
 #   scripts/fuzz.sh [seconds per target, default 60]
 # Builds build/fuzz with clang, the whole project instrumented for coverage and under ASan +
 # UBSan (any UB aborts). Seeds come from fuzz/corpus/<target>/; inputs the fuzzer finds
@@ -22,20 +23,23 @@ cmake -S . -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDe
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link" \
   -DTUMBLE_FUZZ=ON -DTUMBLE_SANITIZE=ON \
   -DTUMBLE_BUILD_TESTS=OFF -DTUMBLE_BUILD_BENCH=OFF -DTUMBLE_BUILD_VALIDATION=OFF >/dev/null
-cmake --build "$build" -j "$jobs" --target narrowphase_fuzz scene_loader_fuzz
+cmake --build "$build" -j "$jobs" --target narrowphase_fuzz scene_loader_fuzz obj_loader_fuzz \
+  png_height_field_fuzz
 
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:allocator_may_return_null=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 status=0
-for target in scene_loader_fuzz narrowphase_fuzz; do
+for target in scene_loader_fuzz narrowphase_fuzz obj_loader_fuzz png_height_field_fuzz; do
+  budget="$seconds"
+  case "$target" in obj_loader_fuzz | png_height_field_fuzz) budget=$(( (seconds + 2) / 3 )) ;; esac
   seeds="fuzz/corpus/${target%_fuzz}"
   work="$build/corpus/${target%_fuzz}"
   mkdir -p "$work"
-  echo "=== fuzz: $target for ${seconds} s"
+  echo "=== fuzz: $target for ${budget} s"
   # -rss_limit_mb: a scene may legally ask for many bodies; the target builds only small ones.
   # -timeout: a unit this slow is a hang (libccd's EPA once looped for ever). 30 s, not 10: a
   # legal but crowded scene can take seconds under the sanitizers on a loaded machine.
-  if ! "$build/fuzz/$target" -max_total_time="$seconds" -timeout=30 -rss_limit_mb=2048 \
+  if ! "$build/fuzz/$target" -max_total_time="$budget" -timeout=30 -rss_limit_mb=2048 \
       -print_final_stats=1 -artifact_prefix="$build/$target-" "$work" "$seeds" \
       2>"$build/$target.log"; then
     status=1
