@@ -4,26 +4,16 @@
 // that its own checks would change (an index out of range, a non-finite vertex, a degenerate
 // triangle left in) is a finding.
 
-#include <unistd.h>
-
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <string>
 
+#include "scratch_file.h"
 #include "tumble/scene/mesh_io.h"
 
 namespace {
-
-const std::string& scratchFile() {
-    static const std::string path = (std::filesystem::temp_directory_path() /
-                                     ("tumble_obj_fuzz_" + std::to_string(getpid()) + ".obj"))
-                                        .string();
-    return path;
-}
 
 [[noreturn]] void finding(const char* what) {
     std::fprintf(stderr, "obj_loader_fuzz: %s\n", what);
@@ -33,13 +23,10 @@ const std::string& scratchFile() {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    {
-        std::ofstream out(scratchFile(), std::ios::binary | std::ios::trunc);
-        out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
-    }
+    const std::string file = tumble::fuzz::writeScratch("obj_fuzz", ".obj", data, size);
     tumble::TriangleMeshData mesh;
     try {
-        mesh = tumble::loadObj(scratchFile());
+        mesh = tumble::loadObj(file);
     } catch (const tumble::InvalidArgument& e) {
         if (std::string(e.what()).empty())
             finding("a refusal without a message");

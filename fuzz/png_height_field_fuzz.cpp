@@ -4,27 +4,17 @@
 // answer; a crash, undefined behaviour, a leak, another exception, a refusal without a message, or
 // an accepted field whose own checks fail is a finding.
 
-#include <unistd.h>
-
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <string>
 
+#include "scratch_file.h"
 #include "tumble/scene/mesh_io.h"
 
 namespace {
-
-const std::string& scratchFile() {
-    static const std::string path = (std::filesystem::temp_directory_path() /
-                                     ("tumble_png_fuzz_" + std::to_string(getpid()) + ".png"))
-                                        .string();
-    return path;
-}
 
 [[noreturn]] void finding(const char* what) {
     std::fprintf(stderr, "png_height_field_fuzz: %s\n", what);
@@ -70,10 +60,11 @@ void fixCrcs(std::string& bytes) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     std::string bytes(reinterpret_cast<const char*>(data), size);
     fixCrcs(bytes);
-    std::ofstream(scratchFile(), std::ios::binary | std::ios::trunc) << bytes;
+    const std::string file = tumble::fuzz::writeScratch(
+        "png_fuzz", ".png", reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
     tumble::HeightFieldData field;
     try {
-        field = tumble::loadHeightFieldPng(scratchFile(), 0.5, 0.5, 2);
+        field = tumble::loadHeightFieldPng(file, 0.5, 0.5, 2);
     } catch (const tumble::InvalidArgument& e) {
         if (std::string(e.what()).empty())
             finding("a refusal without a message");

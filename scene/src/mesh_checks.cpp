@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -154,6 +155,10 @@ TriangleMeshData loadMeshFile(const std::string& path, std::vector<std::string>*
 namespace mesh_io {
 
 std::string readFile(const std::string& path) {
+    // Not a device or a pipe: a scene naming /dev/zero must be refused, not read for ever.
+    std::error_code error;
+    if (std::filesystem::exists(path, error) && !std::filesystem::is_regular_file(path, error))
+        fail(path, ": not a regular file");
     std::ifstream in(path, std::ios::binary);
     if (!in)
         fail(path, ": cannot open the file");

@@ -180,6 +180,8 @@ TEST(ObjLoader, RefusesBadFilesNamingTheLine) {
         contains(refused("empty.obj", v3), "empty.obj: a mesh needs at least one triangle"));
     EXPECT_TRUE(
         contains(refused("flat.obj", v3 + "f 1 1 2\n"), "flat.obj: every triangle is degenerate"));
+    EXPECT_TRUE(contains(refusal([&] { loadObj(dir); }), dir + ": not a regular file"));
+    EXPECT_TRUE(contains(refusal([&] { loadObj("/dev/zero"); }), "/dev/zero: not a regular file"));
     EXPECT_TRUE(contains(refusal([&] { loadMeshFile(kData + "grey8_3x2.png"); }),
                          "a mesh file must end in .obj or .stl"));
 }
