@@ -185,6 +185,7 @@ void SolveStage::projectSprings(BodyStore& bodies, const SpringStore& springs,
         row.rB = def.bodyB.isNull() ? Vec3::Zero()
                                     : Vec3(pB - bodies.motion[bodies.indexOf(def.bodyB)].center);
         row.impulse = 0;
+        row.spectralRadius = 0;  // a position correction: the element's whole stiffness
     }
     prepareSpringRows(projectedBodies_, projectedRows_, context.h, false);
     for (std::size_t j = 0; j < projectedRows_.size(); ++j) {
