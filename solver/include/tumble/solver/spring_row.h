@@ -91,6 +91,10 @@ inline Real springRowSpeed(const SolverBody& a, const SolverBody& b, const Sprin
 /// inactive.
 void prepareSpringRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h);
 
+/// Whether a prepared row's element is one the step does not resolve ((omega h)^2 >= 4): its
+/// scheme damps it, and its turning within the step wants post-stabilisation.
+bool springRowUnresolved(const SpringRow& row, Real h);
+
 /// prepareSpringRow() on every row, then applies the warm-start impulses (or zeroes them when
 /// !warmStart).
 void prepareSpringRows(std::span<SolverBody> bodies, std::span<SpringRow> rows, Real h,
