@@ -331,8 +331,11 @@ Real SpringBlockSolver::relaxSlackRows(std::span<SolverBody> bodies, std::span<S
 Real SpringBlockSolver::solve(std::span<SolverBody> bodies, std::span<SpringRow> rows) {
     if (!factored_)
         return 0;
-    for (std::size_t i = 0; i < elementCount_; ++i)
+    // The caller may move the targets between solves (the joints' block: updateJointBlockTargets).
+    for (std::size_t i = 0; i < elementCount_; ++i) {
         rows_[i].impulse = rows[i].impulse;
+        rows_[i].bias = rows[i].bias;
+    }
     const Real change = solveRows(bodies);
     for (std::size_t i = 0; i < elementCount_; ++i)
         rows[i].impulse = rows_[i].impulse;
