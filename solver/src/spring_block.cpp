@@ -20,7 +20,7 @@ constexpr Real kFlipSpeed = 1e-9;
 // (omega_t h)^2 of an element's transverse mode above which it gets transverse rows. Below,
 // the explicit direction is leapfrog on that mode (second order, stable to omega_t h = 2 for
 // one element; a chain's top bead went at ~2.2 measured with both its threads).
-constexpr Real kResolvedTransverse = 0.25;
+constexpr Real kResolvedTransverse = 1;
 
 bool usable(const SpringRow& row) {
     return row.mass > 0 && row.bodyA != row.bodyB;
