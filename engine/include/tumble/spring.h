@@ -9,10 +9,11 @@
 ///   other forces before the velocity update, exactly as in the ESA study. Stable only while
 ///   h < 2 / omega for a mass on one spring, omega = sqrt(k / m); a uniform string of masses
 ///   m and elements k needs h < 1 / omega_e (its highest mode is 2 omega_e).
-/// - Implicit (default): a soft constraint row in the solver, the trapezoidal (Newmark average
-///   acceleration) rule on the spring (see tumble/solver/spring_row.h): second order, stable at
-///   any stiffness, and without numerical damping -- the energy of an undamped string stays
-///   what it was; only c dissipates. `numericalDamping` adds some at high frequencies on request.
+/// - Implicit (default): a soft constraint row in the solver, a three-level Newmark scheme on
+///   the spring (see tumble/solver/spring_row.h): second order and without numerical damping
+///   while the step resolves the element (omega h <= 2), so only c dissipates; a stiffer element
+///   is damped (spectral radius 4 / (omega h)^2) rather than left to swing. Stable at any
+///   stiffness. `numericalDamping` adds damping at every omega h on request.
 /// - BackwardEuler: the same row with implicit Euler (first order): stable at any stiffness, but
 ///   it damps every mode it resolves poorly (a soft net lost 12-68 % of its energy in 2 s).
 
@@ -35,7 +36,7 @@ struct SpringId {
 
 enum class SpringFormulation : std::uint8_t {
     Explicit,       ///< force before the velocity update (the study's scheme; h < 1 / omega_e)
-    Implicit,       ///< soft constraint row, trapezoidal: second order, energy-true (default)
+    Implicit,       ///< soft constraint row, Newmark: second order, energy-true (default)
     BackwardEuler,  ///< soft constraint row, implicit Euler: first order, dissipative
 };
 
@@ -52,10 +53,10 @@ struct SpringDef {
     Real damping = 0;                  ///< c (N s/m), finite and >= 0
     bool tensionOnly = false;          ///< a thread: pulls when stretched, pushes never
     SpringFormulation formulation = SpringFormulation::Implicit;
-    /// Implicit only: numerical damping of the modes a step cannot resolve, in [0, 1]; 1 - rho
-    /// is the scheme's spectral radius at omega h -> inf (0: none, second order; 1: implicit
-    /// Euler's weights, first order). Resolved modes (omega h << 1) lose O(rho (omega h)^2)
-    /// per step. Physical damping is `damping` alone.
+    /// Implicit only, in [0, 1]: 0 (default) no numerical damping where the step resolves the
+    /// element; d > 0 takes damped weights everywhere, spectral radius (1 - d) at omega h <= 2
+    /// (first order: measured 5e-4 of the energy per step at omega h = 0.1, d = 0.1); 1 is
+    /// implicit Euler. Physical damping is `damping` alone.
     Real numericalDamping = 0;
 };
 

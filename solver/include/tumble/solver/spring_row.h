@@ -12,14 +12,21 @@
 ///
 ///     v1 - v0 = h M^-1 (f_ext + w1 f(x1) + w0 f(x0) + w_1 f(x_{-1})),   w1 + w0 + w_1 = 1,
 ///
-/// and with rho in [0, 1] the weights w1 = 1 / (1 + rho)^2, w0 = 2 rho w1, w_1 = rho^2 w1 put
-/// both roots of a mode at omega h -> inf on -rho: rho = 1 (weights 1/4, 1/2, 1/4) is Newmark's
-/// average acceleration = the trapezoidal rule: second order, unconditionally stable, and
-/// without numerical damping (a linear mode's roots stay on the unit circle at every omega h);
-/// rho = 0 (weights 1, 0, 0) is implicit Euler. Damping takes the mean rate over the same
-/// stencil, a = w1 + w0 / 2 = 1 / (1 + rho) on J v1 and 1 - a on J v0 (the central difference
-/// at rho = 1: it dissipates exactly c (dL/dt)^2, no more). With C(x1) ~ C + h J v1 and
-/// C(x_{-1}) ~ C - h J v0 (linearised about x0):
+/// Symmetric weights (beta, 1 - 2 beta, beta) are second order and keep a linear mode's roots
+/// on the unit circle (no numerical damping) while (omega h)^2 (1 - 4 beta) <= 4; beta = 1/12
+/// (Fox-Goodwin) also makes the phase fourth order, beta = 1/4 (the trapezoidal rule) is stable
+/// at every omega h. But in these variables an undamped scheme conserves a form that weighs the
+/// positions by ~omega h / 2 at large omega h: a stiff spring released stretched at omega h =
+/// 100 swung its mass 90x further than the stretch. Hence, by the element's (omega h)^2 =
+/// h^2 k J M^-1 J' (prepareSpringRow): <= 1.5 beta = 1/12; up to 4 beta = 1/4 - 1/(4 (omega
+/// h)^2), stable for a node's highest mode (~2x its element's); from 4 the damped weights
+/// w1 = 1 / (1 + rho)^2, w0 = 2 rho w1, w_1 = rho^2 w1, which put both roots at omega h -> inf
+/// on -rho, with rho = 4 / (omega h)^2 (rho = 0: implicit Euler, weights 1, 0, 0). The row's
+/// spectralRadius scales rho (1 - SpringDef::numericalDamping; 0 for backward Euler) and, below
+/// 1, selects the damped weights at every omega h. Damping takes the mean rate over the same
+/// stencil, a = 1/2 (central: it dissipates exactly c (dL/dt)^2) with symmetric weights,
+/// a = 1 / (1 + rho) on J v1 and 1 - a on J v0 with the damped ones. With C(x1) ~ C + h J v1
+/// and C(x_{-1}) ~ C - h J v0 (linearised about x0):
 ///
 ///     lambda = -h (k (C + h (w1 J v1 - w_1 J v0)) + c (a J v1 + (1 - a) J v0))
 ///  => J v1 + bias + gamma lambda = 0,    r = h k w1 + c a,    gamma = 1 / (h r),
@@ -53,7 +60,8 @@ struct SpringRow {
     Real damping = 0;                ///< c (N s/m), >= 0
     bool tensionOnly = false;        ///< pulls only: lambda <= 0
     Real impulse = 0;                ///< accumulated lambda (N s): warm start in, result out
-    /// rho in [0, 1]: 1 the trapezoidal rule, 0 implicit Euler (see above).
+    /// In [0, 1]: 1 the default weights, below 1 the damped ones scaled by it, 0 implicit
+    /// Euler (see above).
     Real spectralRadius = 0;
     /// Anchor B's velocity minus anchor A's at the step's start, before any force of the step
     /// (m/s): J v0 of the scheme. Unused when spectralRadius = 0.
