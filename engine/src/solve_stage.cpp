@@ -135,8 +135,8 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
 
     for (std::size_t j = 0; j < springRows_.size(); ++j) {
         const SpringRow& row = springRows_[j];
-        const Real tension = -row.impulse * context.inverseH;
-        springs.state[rowSpring_[j]] = {tension, row.tensionOnly && row.impulse == 0};
+        const Real tension = -(row.impulse + row.knownImpulse) * context.inverseH;
+        springs.state[rowSpring_[j]] = {tension, row.tensionOnly && !(tension > 0)};
     }
 
     for (std::size_t j = 0; j < constraints.size(); ++j) {

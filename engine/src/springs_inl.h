@@ -48,11 +48,10 @@ void buildSpringRows(const SpringStore& springs, const BodyStore& bodies, Real h
         row.tensionOnly = def.tensionOnly;
         row.impulse = -springs.state[i].tension * h;  // tension kept in N: h may change
         const bool trapezoidal = def.formulation == SpringFormulation::Implicit;
-        // A thread that was slack takes implicit Euler for the step that catches it: the
-        // three-level weights assume the force was linear over the last step, and a net thrown
-        // open at omega_e h ~ 1 gained energy without bound from its catches.
-        const bool catching = def.tensionOnly && springs.state[i].tension <= 0;
-        row.spectralRadius = trapezoidal && !catching ? 1 - def.numericalDamping : 0;
+        // A thread that was slack may take implicit Euler for the step that catches it
+        // (spring_row.h).
+        row.catching = def.tensionOnly && springs.state[i].tension <= 0;
+        row.spectralRadius = trapezoidal ? 1 - def.numericalDamping : 0;
         row.geometricStiffness = trapezoidal;
         if (row.spectralRadius > 0) {
             row.startVelocity = startAnchorVelocity(bodies, b, world, row.rB) -

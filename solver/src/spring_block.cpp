@@ -216,10 +216,12 @@ bool SpringBlockSolver::factor() {
 void SpringBlockSolver::addTransverseRows(std::span<const SolverBody> bodies, Real h) {
     for (std::size_t i = 0; i < elementCount_; ++i) {
         const SpringRow row = rows_[i];  // a copy: the pushes below may move rows_
-        // The warm start is last step's tension: -T h. Pushing elements would make K indefinite.
-        if (!row.geometricStiffness || !usable(row) || !(row.impulse < 0))
+        // The warm start is last step's tension, -T h (with a thread's known levels, spring_row.h).
+        // Pushing elements would make K indefinite.
+        const Real impulse = row.impulse + row.knownImpulse;
+        if (!row.geometricStiffness || !usable(row) || !(impulse < 0))
             continue;
-        const Real stiffness = -row.impulse / (h * row.length);  // T / L (N/m)
+        const Real stiffness = -impulse / (h * row.length);  // T / L (N/m)
         const SolverBody& a = bodies[row.bodyA];
         const SolverBody& b = bodies[row.bodyB];
         if (stiffness * h * h * (a.inverseMass + b.inverseMass) < kResolvedTransverse)

@@ -36,8 +36,14 @@
 /// gamma = 1 / (h (c + h k)) and bias = k C / (c + h k). Rigid in the limit k -> inf. The bias
 /// is the spring's force, not a stabilisation bias: it is the same in the solver's biased and
 /// relax sweeps, so a split-impulse step moves the bodies by exactly the spring's impulse.
-/// Tension-only elements (threads) are one-sided rows, lambda <= 0: the complementarity holds
-/// on the step's mean tension.
+/// Tension-only elements (threads) take the known levels with their own law, T = k max(C, 0)
+/// (C_{-1} ~ C - h J v0): lambda = knownImpulse + the row's own impulse, knownImpulse =
+/// -h k (w0 max(C, 0) + w_1 max(C_{-1}, 0)) applied once, bias = (k w1 C + c (1 - a) J v0) / r,
+/// and the row is one-sided on the new level alone (its impulse <= 0: T1 >= 0). Linearising
+/// the slack levels instead (a push k C < 0) delayed each catch and release: the net-10 sweep's
+/// error was 2-4x larger. A thread slack over the last step (`catching`) with (omega h)^2 >
+/// 0.5 takes implicit Euler for that step: at omega_e h = 0.7 - 1.2 the three-level catches
+/// pumped a tumbling net's energy without bound (explicit threads too, from 0.85).
 ///
 /// Deterministic: rows are solved in array order.
 
@@ -66,6 +72,8 @@ struct SpringRow {
     /// Anchor B's velocity minus anchor A's at the step's start, before any force of the step
     /// (m/s): J v0 of the scheme. Unused when spectralRadius = 0.
     Vec3 startVelocity = Vec3::Zero();
+    /// A thread that was slack over the last step (see above).
+    bool catching = false;
     /// The block solve adds the element's transverse (geometric) stiffness when it is taut
     /// (SpringBlockSolver::prepare).
     bool geometricStiffness = false;
@@ -78,6 +86,9 @@ struct SpringRow {
     Real mass = 0;                        ///< 1 / (J M^-1 J' + gamma) (kg); 0: inactive row
     Real softness = 0;                    ///< gamma (1/kg)
     Real bias = 0;                        ///< (beta / h) C (m/s)
+    /// A thread's impulse from the scheme's known levels, -h (w0 T0 + w_1 T_-1) (N s), applied
+    /// once by prepareSpringRows(); `impulse` is the rest, the part the row solves for.
+    Real knownImpulse = 0;
 };
 
 /// The row's impulse lambda on its bodies: lambda n on B at its anchor, -lambda n on A.
