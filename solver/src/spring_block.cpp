@@ -22,6 +22,12 @@ constexpr Real kFlipSpeed = 1e-9;
 // one element; a chain's top bead went at ~2.2 measured with both its threads).
 constexpr Real kResolvedTransverse = 1;
 
+// A settled solve whose tension in a taut element differs from the one its transverse rows
+// were built with by more than this factor builds them again (once per step): the first step
+// of a string released at omega_t h = 14 has no tension history, and its transverse motion,
+// explicit, took 8x the string's energy.
+constexpr Real kStaleTension = 2;
+
 bool usable(const SpringRow& row) {
     return row.mass > 0 && row.bodyA != row.bodyB;
 }
@@ -213,15 +219,14 @@ bool SpringBlockSolver::factor() {
     return true;
 }
 
-void SpringBlockSolver::addTransverseRows(std::span<const SolverBody> bodies, Real h) {
+void SpringBlockSolver::addTransverseRows(std::span<const SolverBody> bodies) {
+    const Real h = h_;
     for (std::size_t i = 0; i < elementCount_; ++i) {
         const SpringRow row = rows_[i];  // a copy: the pushes below may move rows_
-        // The warm start is last step's tension, -T h (with a thread's known levels, spring_row.h).
         // Pushing elements would make K indefinite.
-        const Real impulse = row.impulse + row.knownImpulse;
-        if (!row.geometricStiffness || !usable(row) || !(impulse < 0))
+        if (!row.geometricStiffness || !usable(row) || !(tension_[i] > 0))
             continue;
-        const Real stiffness = -impulse / (h * row.length);  // T / L (N/m)
+        const Real stiffness = tension_[i] / row.length;  // T / L (N/m)
         const SolverBody& a = bodies[row.bodyA];
         const SolverBody& b = bodies[row.bodyB];
         if (stiffness * h * h * (a.inverseMass + b.inverseMass) < kResolvedTransverse)
@@ -249,13 +254,26 @@ void SpringBlockSolver::prepare(std::span<const SolverBody> bodies, std::span<co
                                 Real h) {
     factored_ = false;
     settled_ = false;
+    h_ = h;
     elementCount_ = rows.size();
     rows_.assign(rows.begin(), rows.end());
     owner_.clear();
     if (rows.empty())
         return;
+    warm_.resize(elementCount_);
+    tension_.resize(elementCount_);
+    for (std::size_t i = 0; i < elementCount_; ++i) {
+        warm_[i] = rows[i].impulse;
+        // The warm start is last step's tension, -T h (with a thread's known levels,
+        // spring_row.h).
+        tension_[i] = h > 0 ? -(rows[i].impulse + rows[i].knownImpulse) / h : 0;
+    }
     if (h > 0)
-        addTransverseRows(bodies, h);
+        addTransverseRows(bodies);
+    start(bodies);
+}
+
+void SpringBlockSolver::start(std::span<const SolverBody> bodies) {
     if (!samePattern(rows_))
         analyse(rows_);
     active_.resize(rows_.size());
@@ -350,6 +368,47 @@ Real SpringBlockSolver::solveRows(std::span<SolverBody> bodies) {
         computeUpdate(bodies, rows);
         return std::max(apply(bodies, rows, false), relaxSlackRows(bodies, rows));
     }
+    const Real change = settle(bodies);
+    if (!factored_ || !refreshTransverseRows(bodies))
+        return change;
+    return factored_ ? settle(bodies) : change;
+}
+
+bool SpringBlockSolver::refreshTransverseRows(std::span<SolverBody> bodies) {
+    if (!(h_ > 0))
+        return false;
+    bool stale = false;
+    for (std::size_t i = 0; i < elementCount_ && !stale; ++i) {
+        const SpringRow& row = rows_[i];
+        if (!row.geometricStiffness || !usable(row))
+            continue;
+        const Real solved = -(row.impulse + row.knownImpulse) / h_;
+        const Real transverse = solved * h_ * h_ *
+                                (bodies[row.bodyA].inverseMass + bodies[row.bodyB].inverseMass) /
+                                row.length;  // (omega_t h)^2 at the solved tension
+        stale = transverse >= kResolvedTransverse &&
+                !(solved <= kStaleTension * tension_[i] && tension_[i] <= kStaleTension * solved);
+    }
+    if (!stale)
+        return false;
+    // Undo the solve, then build the transverse rows again from its tensions.
+    for (std::size_t i = 0; i < rows_.size(); ++i) {
+        SpringRow& row = rows_[i];
+        const Real target = i < elementCount_ ? warm_[i] : 0;
+        applySpringImpulse(bodies[row.bodyA], bodies[row.bodyB], row, target - row.impulse);
+        if (i < elementCount_)
+            tension_[i] = std::max<Real>(0, -(row.impulse + row.knownImpulse) / h_);
+        row.impulse = target;
+    }
+    rows_.resize(elementCount_);
+    owner_.clear();
+    addTransverseRows(bodies);
+    start(bodies);
+    return true;
+}
+
+Real SpringBlockSolver::settle(std::span<SolverBody> bodies) {
+    const std::span<SpringRow> rows(rows_);
     settled_ = true;
     // Rows left out keep no warm-start impulse.
     for (std::size_t i = 0; i < rows.size(); ++i) {

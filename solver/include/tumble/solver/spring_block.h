@@ -81,8 +81,15 @@ private:
         bool sideBJ;
     };
 
-    void addTransverseRows(std::span<const SolverBody> bodies, Real h);
+    void addTransverseRows(std::span<const SolverBody> bodies);
+    /// Sets which rows start active, assembles and factors K.
+    void start(std::span<const SolverBody> bodies);
     Real solveRows(std::span<SolverBody> bodies);
+    /// The first solve of a step: settles the tension-only active set.
+    Real settle(std::span<SolverBody> bodies);
+    /// Whether the settled solve's tensions leave a taut element's transverse rows far from
+    /// the tension they were built with; if so, undoes the solve and rebuilds them with it.
+    bool refreshTransverseRows(std::span<SolverBody> bodies);
     bool samePattern(std::span<const SpringRow> rows) const;
     void analyse(std::span<const SpringRow> rows);
     void assemble(std::span<const SolverBody> bodies, std::span<const SpringRow> rows);
@@ -98,6 +105,9 @@ private:
     std::vector<SpringRow> rows_;
     std::vector<std::uint32_t> owner_;
     std::size_t elementCount_ = 0;
+    Real h_ = 0;                 ///< prepare()'s step; 0: no transverse rows
+    std::vector<Real> warm_;     ///< the elements' impulses at prepare()
+    std::vector<Real> tension_;  ///< each element's tension for its transverse rows (N)
     // Pattern key: the rows' bodies.
     std::vector<std::uint32_t> keyA_;
     std::vector<std::uint32_t> keyB_;
