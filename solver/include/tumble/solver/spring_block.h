@@ -36,8 +36,9 @@
 /// definite for threads) and no stretch at the step's start, in the row's own scheme -- their
 /// impulse is the change of the transverse force over the step, -h T / L (w1 h J_t v1 -
 /// w_1 h J_t v0). They follow their element in the tension-only active set and report nothing.
-/// A settled first solve whose tension in a taut element is 2x off the one its rows were built
-/// with (the first step, a catch) is undone and solved again with rows from its tensions.
+/// A settled first solve that leaves a taut element's transverse stiffness explicit beyond
+/// leapfrog's limit (the first step, a catch) is undone and solved again with rows from its
+/// tensions.
 ///
 /// Deterministic: rows in array order, fixed ordering for a fixed pattern.
 
