@@ -58,6 +58,7 @@ ValidationCase massRatioCase();
 ValidationCase tableCase();
 ValidationCase tunnelCase();
 ValidationCase springStabilityCase();
+ValidationCase springSchemeCase();
 ValidationCase tautStringCase();
 ValidationCase hangingChainCase();
 ValidationCase stiffNetCase();
@@ -73,14 +74,31 @@ ValidationCase rollingCase();
 
 /// Every case, in the order the runner lists them.
 inline std::vector<ValidationCase> allCases() {
-    return {freeFallCase(),   oscillatorCase(),   torqueFreeCase(),
-            bounceCase(),     inclineCase(),      slideCase(),
-            stackCase(),      pyramidCase(),      massRatioCase(),
-            tableCase(),      tunnelCase(),       springStabilityCase(),
-            tautStringCase(), hangingChainCase(), stiffNetCase(),
-            pendulumCase(),   jointChainCase(),   fiveBodyPendulumCase(),
-            motorCase(),      pdArmCase(),        stringCase(),
-            stringCostCase(), stackCostCase(),    rollingCase()};
+    return {freeFallCase(),
+            oscillatorCase(),
+            torqueFreeCase(),
+            bounceCase(),
+            inclineCase(),
+            slideCase(),
+            stackCase(),
+            pyramidCase(),
+            massRatioCase(),
+            tableCase(),
+            tunnelCase(),
+            springStabilityCase(),
+            springSchemeCase(),
+            tautStringCase(),
+            hangingChainCase(),
+            stiffNetCase(),
+            pendulumCase(),
+            jointChainCase(),
+            fiveBodyPendulumCase(),
+            motorCase(),
+            pdArmCase(),
+            stringCase(),
+            stringCostCase(),
+            stackCostCase(),
+            rollingCase()};
 }
 
 /// Least-squares slope of log(y) against log(x): the order of convergence.

@@ -178,7 +178,7 @@ void field(Ar& a, JointStepState& x) {
 template <typename Ar>
 void field(Ar& a, SpringDef& x) {
     fields(a, x.bodyA, x.bodyB, x.localAnchorA, x.localAnchorB, x.restLength, x.stiffness,
-           x.damping, x.tensionOnly, x.formulation);
+           x.damping, x.tensionOnly, x.formulation, x.numericalDamping);
 }
 template <typename Ar>
 void field(Ar& a, SpringStepState& x) {

@@ -36,6 +36,9 @@ void checkThread(const ThreadDef& thread, const std::string& where) {
     }
     if (!(std::isfinite(thread.damping) && thread.damping >= 0))
         fail(where, ".thread.damping = ", thread.damping, " (N s/m) must be finite and >= 0");
+    if (!(thread.numericalDamping >= 0 && thread.numericalDamping <= 1)) {
+        fail(where, ".thread.numericalDamping = ", thread.numericalDamping, " must be in [0, 1]");
+    }
 }
 
 BodyId addNode(World& world, const NodeDef& node, Real mass, const Vec3& position,
@@ -71,6 +74,7 @@ SpringId addThread(World& world, const ThreadDef& thread, BodyId a, BodyId b,
     spring.damping = thread.damping;
     spring.tensionOnly = thread.tensionOnly;
     spring.formulation = thread.formulation;
+    spring.numericalDamping = thread.numericalDamping;
     return world.createSpring(spring);
 }
 

@@ -10,13 +10,13 @@ SpringId SpringStore::add(const SpringDef& def) {
     defs.push_back(def);
     state.push_back({});
     previousState.push_back({});
-    if (def.formulation == SpringFormulation::Implicit)
+    if (def.formulation != SpringFormulation::Explicit)
         implicitCount += 1;
     return id;
 }
 
 void SpringStore::remove(SpringId id) {
-    if (defs[indexOf(id)].formulation == SpringFormulation::Implicit)
+    if (defs[indexOf(id)].formulation != SpringFormulation::Explicit)
         implicitCount -= 1;
     moveLastInto(pool_.remove(id), defs, state, previousState);
 }

@@ -44,7 +44,7 @@ public:
     std::vector<SpringDef> defs;
     std::vector<SpringStepState> state;
     std::vector<SpringStepState> previousState;
-    std::uint32_t implicitCount = 0;  ///< how many use SpringFormulation::Implicit
+    std::uint32_t implicitCount = 0;  ///< how many are solver rows (not Explicit)
 };
 
 /// Drag of the bodies that have any, in the order drag was first set.

@@ -6,25 +6,38 @@
 namespace tumble {
 namespace {
 
-Vec3 anchorVelocity(const BodyStore& bodies, BodyId body, const Vec3& position) {
-    if (body.isNull())
-        return Vec3::Zero();
-    const BodyMotion& m = bodies.motion[bodies.indexOf(body)];
-    return m.linearVelocity + m.angularVelocity.cross(position - m.center);
-}
+// No body: a spring end fixed in the world.
+constexpr std::uint32_t kWorld = ~std::uint32_t(0);
 
-void addForce(BodyStore& bodies, BodyId body, const Vec3& force, const Vec3& point) {
+// One end of an explicit spring: its body's dense index (looked up once) and where its anchor is.
+struct End {
+    std::uint32_t index = kWorld;
+    Vec3 position = Vec3::Zero();  // of the anchor (m)
+};
+
+End endOf(const BodyStore& bodies, BodyId body, const Vec3& localAnchor) {
     if (body.isNull())
-        return;
+        return {kWorld, localAnchor};
     const std::uint32_t i = bodies.indexOf(body);
-    if (!bodies.isAwakeDynamic(i))
-        return;
-    bodies.forces[i].force += force;
-    bodies.forces[i].torque += (point - bodies.motion[i].center).cross(force);
+    const BodyMotion& m = bodies.motion[i];
+    const Vec3 offset = localAnchor - bodies.inertia[i].localCenter;
+    // A lumped node's threads meet at its centre: no rotation to apply.
+    return {i, offset.isZero() ? m.center : Vec3(m.center + m.orientation * offset)};
 }
 
-bool isAwakeDynamic(const BodyStore& bodies, BodyId body) {
-    return !body.isNull() && bodies.isAwakeDynamic(bodies.indexOf(body));
+Vec3 anchorVelocity(const BodyStore& bodies, const End& end) {
+    if (end.index == kWorld)
+        return Vec3::Zero();
+    const BodyMotion& m = bodies.motion[end.index];
+    return m.linearVelocity + m.angularVelocity.cross(end.position - m.center);
+}
+
+void addForce(BodyStore& bodies, const End& end, const Vec3& force) {
+    if (end.index == kWorld || !bodies.isAwakeDynamic(end.index))
+        return;
+    bodies.forces[end.index].force += force;
+    bodies.forces[end.index].torque +=
+        (end.position - bodies.motion[end.index].center).cross(force);
 }
 
 }  // namespace
@@ -101,22 +114,22 @@ void ForceElements::apply(SpringStore& springs, const DragStore& drag, BodyStore
         const SpringDef& def = springs.defs[i];
         if (def.formulation != SpringFormulation::Explicit)
             continue;
-        if (!isAwakeDynamic(bodies, def.bodyA) && !isAwakeDynamic(bodies, def.bodyB))
+        const End a = endOf(bodies, def.bodyA, def.localAnchorA);
+        const End b = endOf(bodies, def.bodyB, def.localAnchorB);
+        if (!bodies.isAwakeDynamic(a.index) &&
+            (b.index == kWorld || !bodies.isAwakeDynamic(b.index)))
             continue;
-        const Vec3 pA = anchorPosition(bodies, def.bodyA, def.localAnchorA);
-        const Vec3 pB = anchorPosition(bodies, def.bodyB, def.localAnchorB);
-        const Vec3 d = pB - pA;
+        const Vec3 d = b.position - a.position;
         const Real length = d.norm();
         const Vec3 n = length > 0 ? Vec3(d / length) : Vec3::Zero();
-        const Real lengthRate =
-            n.dot(anchorVelocity(bodies, def.bodyB, pB) - anchorVelocity(bodies, def.bodyA, pA));
+        const Real lengthRate = n.dot(anchorVelocity(bodies, b) - anchorVelocity(bodies, a));
         Real tension = def.stiffness * (length - def.restLength) + def.damping * lengthRate;
         if (def.tensionOnly)
             tension = length > def.restLength ? std::max<Real>(tension, 0) : 0;
         springs.state[i] = {tension, def.tensionOnly && tension == 0};
         const Vec3 force = tension * n;  // on A, towards B
-        addForce(bodies, def.bodyA, force, pA);
-        addForce(bodies, def.bodyB, -force, pB);
+        addForce(bodies, a, force);
+        addForce(bodies, b, -force);
     }
 
     for (std::size_t j = 0; j < drag.bodies.size(); ++j) {

@@ -5,6 +5,16 @@
 
 namespace tumble {
 
+/// Velocity at the start of the (sub)step of the point at offset r from a body's centre of mass
+/// (m/s): what it moved with over the last step. Zero for the world and sleeping bodies.
+inline Vec3 startAnchorVelocity(const BodyStore& bodies, std::uint32_t index, bool world,
+                                const Vec3& r) {
+    if (world || !bodies.isAwake(index))
+        return Vec3::Zero();
+    const BodyMotion& start = bodies.previousMotion[index];
+    return start.linearVelocity + start.angularVelocity.cross(r);
+}
+
 template <typename SolverIndex>
 void buildSpringRows(const SpringStore& springs, const BodyStore& bodies, Real h,
                      SolverIndex&& solverIndex, std::vector<SpringRow>& rows,
@@ -15,7 +25,7 @@ void buildSpringRows(const SpringStore& springs, const BodyStore& bodies, Real h
         return;
     for (std::uint32_t i = 0; i < springs.count(); ++i) {
         const SpringDef& def = springs.defs[i];
-        if (def.formulation != SpringFormulation::Implicit)
+        if (def.formulation == SpringFormulation::Explicit)
             continue;
         const std::uint32_t a = bodies.indexOf(def.bodyA);
         const bool world = def.bodyB.isNull();
@@ -37,6 +47,16 @@ void buildSpringRows(const SpringStore& springs, const BodyStore& bodies, Real h
         row.damping = def.damping;
         row.tensionOnly = def.tensionOnly;
         row.impulse = -springs.state[i].tension * h;  // tension kept in N: h may change
+        const bool trapezoidal = def.formulation == SpringFormulation::Implicit;
+        // A thread that was slack may take implicit Euler for the step that catches it
+        // (spring_row.h).
+        row.catching = def.tensionOnly && springs.state[i].tension <= 0;
+        row.spectralRadius = trapezoidal ? 1 - def.numericalDamping : 0;
+        row.geometricStiffness = trapezoidal;
+        if (row.spectralRadius > 0) {
+            row.startVelocity = startAnchorVelocity(bodies, b, world, row.rB) -
+                                startAnchorVelocity(bodies, a, false, row.rA);
+        }
         rows.push_back(row);
         rowSpring.push_back(i);
     }

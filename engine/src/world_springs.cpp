@@ -41,10 +41,13 @@ void checkSpringDef(const SpringDef& def, const BodyStore& bodies) {
     if (!(std::isfinite(def.damping) && def.damping >= 0))
         fail("SpringDef.damping = ", def.damping, " (N s/m) must be finite and >= 0");
     if (def.formulation != SpringFormulation::Explicit &&
-        def.formulation != SpringFormulation::Implicit) {
+        def.formulation != SpringFormulation::Implicit &&
+        def.formulation != SpringFormulation::BackwardEuler) {
         fail("SpringDef.formulation = ", static_cast<int>(def.formulation),
              " is not a formulation");
     }
+    if (!(def.numericalDamping >= 0 && def.numericalDamping <= 1))
+        fail("SpringDef.numericalDamping = ", def.numericalDamping, " must be in [0, 1]");
 }
 
 // An explicit spring's step is stable only for omega h < 2 (omega^2 = k (1/m_A + 1/m_B), undamped;

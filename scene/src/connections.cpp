@@ -85,6 +85,7 @@ SpringSpec parseSpring(const Json& value, const std::string& path, const Scene& 
     s.def.damping = o.positive("damping", 0, true);
     s.def.tensionOnly = o.boolean("tensionOnly", false);
     s.def.formulation = parseFormulation(o, s.def.formulation);
+    s.def.numericalDamping = parseNumericalDamping(o, s.def.numericalDamping);
     o.finish();
     return s;
 }
@@ -196,10 +197,19 @@ void parseList(const Json& value, const std::string& key, std::vector<Spec>& out
 }  // namespace
 
 SpringFormulation parseFormulation(JsonObject& o, SpringFormulation fallback) {
+    const char* names[] = {"explicit", "implicit", "backward-euler"};
     const std::string f =
-        o.choice("formulation", fallback == SpringFormulation::Explicit ? "explicit" : "implicit",
-                 {"implicit", "explicit"});
-    return f == "explicit" ? SpringFormulation::Explicit : SpringFormulation::Implicit;
+        o.choice("formulation", names[static_cast<int>(fallback)], {names[0], names[1], names[2]});
+    return f == names[0]   ? SpringFormulation::Explicit
+           : f == names[1] ? SpringFormulation::Implicit
+                           : SpringFormulation::BackwardEuler;
+}
+
+Real parseNumericalDamping(JsonObject& o, Real fallback) {
+    const Real value = o.positive("numericalDamping", fallback, true);
+    if (value > 1)
+        failAt(o.pathOf("numericalDamping"), value, " must be in [0, 1]");
+    return value;
 }
 
 Drag parseDrag(const Json& value, const std::string& path) {

@@ -42,6 +42,7 @@ ThreadDef parseThread(JsonObject o) {
     thread.damping = o.positive("damping", thread.damping, true);
     thread.tensionOnly = o.boolean("tensionOnly", thread.tensionOnly);
     thread.formulation = parseFormulation(o, thread.formulation);
+    thread.numericalDamping = parseNumericalDamping(o, thread.numericalDamping);
     o.finish();
     return thread;
 }

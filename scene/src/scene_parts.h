@@ -59,8 +59,10 @@ void parseGenerator(const Json& value, const std::string& path, const Materials&
 void parseLumped(JsonObject& o, const std::string& type, const std::string& name,
                  const Materials& materials, Scene& scene);
 
-/// The member "formulation": "implicit" or "explicit".
+/// The member "formulation": "implicit", "backward-euler" or "explicit".
 SpringFormulation parseFormulation(JsonObject& o, SpringFormulation fallback);
+/// The member "numericalDamping", in [0, 1] (SpringDef::numericalDamping).
+Real parseNumericalDamping(JsonObject& o, Real fallback);
 
 /// {"linear": N s/m, "quadratic": N s^2/m^2, "projection": [a, b, c] (diagonal) or 3 rows}.
 Drag parseDrag(const Json& value, const std::string& path);

@@ -52,7 +52,7 @@ Real ConstraintSolver::prepare(std::span<SolverBody> bodies,
     prepareSpringRows(bodies, springs, h, settings.warmStart);
     directSprings_ = settings.springSolve == SpringSolve::Direct && !springs.empty();
     if (directSprings_)
-        springBlock_.prepare(bodies, springs);
+        springBlock_.prepare(bodies, springs, h);
     joints_ = joints;
     prepareJointRows(bodies, joints_, h, settings.warmStart);
     directJoints_ = false;

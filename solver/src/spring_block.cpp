@@ -17,8 +17,27 @@ constexpr int kActiveSetRounds = 6;
 // Velocity (m/s) below which a thread's push or pull does not change the active set.
 constexpr Real kFlipSpeed = 1e-9;
 
+// (omega_t h)^2 of an element's transverse mode above which it gets transverse rows. Below,
+// the explicit direction is leapfrog on that mode (second order, stable to omega_t h = 2 for
+// one element; a chain's top bead went at ~2.2 measured with both its threads).
+constexpr Real kResolvedTransverse = 1;
+
+// A settled solve whose tension in a taut element leaves more of its transverse stiffness
+// explicit than leapfrog holds ((omega_t h)^2 of the excess over the tension its transverse
+// rows were built with >= this) builds them again, once per step: the first step of a string
+// released at omega_t h = 14 has no tension history, and its transverse motion, explicit,
+// took 8x the string's energy. (Rebuilding whenever the tension was 2x off cost the 40 x 40
+// stiff net 11 % more time.)
+constexpr Real kExplicitTransverseLimit = 4;
+
 bool usable(const SpringRow& row) {
     return row.mass > 0 && row.bodyA != row.bodyB;
+}
+
+// A unit vector perpendicular to unit n, chosen by a fixed rule.
+Vec3 perpendicular(const Vec3& n) {
+    const Vec3 axis = std::abs(n.x()) < 0.57 ? Vec3::UnitX() : Vec3::UnitY();
+    return n.cross(axis).normalized();
 }
 
 }  // namespace
@@ -202,23 +221,74 @@ bool SpringBlockSolver::factor() {
     return true;
 }
 
-void SpringBlockSolver::prepare(std::span<const SolverBody> bodies,
-                                std::span<const SpringRow> rows) {
+void SpringBlockSolver::addTransverseRows(std::span<const SolverBody> bodies) {
+    const Real h = h_;
+    for (std::size_t i = 0; i < elementCount_; ++i) {
+        const SpringRow row = rows_[i];  // a copy: the pushes below may move rows_
+        // Pushing elements would make K indefinite.
+        if (!row.geometricStiffness || !usable(row) || !(tension_[i] > 0))
+            continue;
+        const Real stiffness = tension_[i] / row.length;  // T / L (N/m)
+        const SolverBody& a = bodies[row.bodyA];
+        const SolverBody& b = bodies[row.bodyB];
+        if (stiffness * h * h * (a.inverseMass + b.inverseMass) < kResolvedTransverse)
+            continue;
+        const Vec3 first = perpendicular(row.direction);
+        for (const Vec3& t : {first, Vec3(row.direction.cross(first))}) {
+            SpringRow transverse = row;
+            transverse.direction = t;
+            transverse.restLength = row.length;  // no transverse stretch at the step's start
+            transverse.stiffness = stiffness;
+            transverse.damping = 0;
+            transverse.tensionOnly = false;
+            transverse.geometricStiffness = false;
+            transverse.impulse = 0;
+            prepareSpringRow(a, b, transverse, h);
+            if (transverse.mass > 0) {
+                rows_.push_back(transverse);
+                owner_.push_back(static_cast<std::uint32_t>(i));
+            }
+        }
+    }
+}
+
+void SpringBlockSolver::prepare(std::span<const SolverBody> bodies, std::span<const SpringRow> rows,
+                                Real h) {
     factored_ = false;
     settled_ = false;
+    h_ = h;
+    elementCount_ = rows.size();
+    rows_.assign(rows.begin(), rows.end());
+    owner_.clear();
     if (rows.empty())
         return;
-    if (!samePattern(rows))
-        analyse(rows);
-    active_.resize(rows.size());
-    wanted_.resize(rows.size());
-    // A thread starts active when it is stretched at the step's start; the first solve corrects
-    // the guess.
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-        const SpringRow& row = rows[i];
-        active_[i] = usable(row) && (!row.tensionOnly || row.length >= row.restLength);
+    warm_.resize(elementCount_);
+    tension_.resize(elementCount_);
+    for (std::size_t i = 0; i < elementCount_; ++i) {
+        warm_[i] = rows[i].impulse;
+        // The warm start is last step's tension, -T h (with a thread's known levels,
+        // spring_row.h).
+        tension_[i] = h > 0 ? -(rows[i].impulse + rows[i].knownImpulse) / h : 0;
     }
-    assemble(bodies, rows);
+    if (h > 0)
+        addTransverseRows(bodies);
+    start(bodies);
+}
+
+void SpringBlockSolver::start(std::span<const SolverBody> bodies) {
+    if (!samePattern(rows_))
+        analyse(rows_);
+    active_.resize(rows_.size());
+    wanted_.resize(rows_.size());
+    // A thread starts active when it is stretched at the step's start; the first solve corrects
+    // the guess. Transverse rows follow their element.
+    for (std::size_t i = 0; i < rows_.size(); ++i) {
+        const SpringRow& row = rows_[i];
+        active_[i] = i < elementCount_
+                         ? usable(row) && (!row.tensionOnly || row.length >= row.restLength)
+                         : active_[owner_[i - elementCount_]];
+    }
+    assemble(bodies, rows_);
     factored_ = factor();
 }
 
@@ -283,10 +353,64 @@ Real SpringBlockSolver::relaxSlackRows(std::span<SolverBody> bodies, std::span<S
 Real SpringBlockSolver::solve(std::span<SolverBody> bodies, std::span<SpringRow> rows) {
     if (!factored_)
         return 0;
+    // The caller may move the targets between solves (the joints' block: updateJointBlockTargets).
+    for (std::size_t i = 0; i < elementCount_; ++i) {
+        rows_[i].impulse = rows[i].impulse;
+        rows_[i].bias = rows[i].bias;
+    }
+    const Real change = solveRows(bodies);
+    for (std::size_t i = 0; i < elementCount_; ++i)
+        rows[i].impulse = rows_[i].impulse;
+    return change;
+}
+
+Real SpringBlockSolver::solveRows(std::span<SolverBody> bodies) {
+    const std::span<SpringRow> rows(rows_);
     if (settled_) {
         computeUpdate(bodies, rows);
         return std::max(apply(bodies, rows, false), relaxSlackRows(bodies, rows));
     }
+    const Real change = settle(bodies);
+    if (!factored_ || !refreshTransverseRows(bodies))
+        return change;
+    return factored_ ? settle(bodies) : change;
+}
+
+bool SpringBlockSolver::refreshTransverseRows(std::span<SolverBody> bodies) {
+    if (!(h_ > 0))
+        return false;
+    bool stale = false;
+    for (std::size_t i = 0; i < elementCount_ && !stale; ++i) {
+        const SpringRow& row = rows_[i];
+        if (!row.geometricStiffness || !usable(row))
+            continue;
+        // (omega_t h)^2 per newton of tension; the rows hold what they were built with, if any.
+        const Real perTension =
+            h_ * h_ * (bodies[row.bodyA].inverseMass + bodies[row.bodyB].inverseMass) / row.length;
+        const Real built = tension_[i] * perTension >= kResolvedTransverse ? tension_[i] : 0;
+        const Real solved = -(row.impulse + row.knownImpulse) / h_;
+        stale = (solved - built) * perTension >= kExplicitTransverseLimit;
+    }
+    if (!stale)
+        return false;
+    // Undo the solve, then build the transverse rows again from its tensions.
+    for (std::size_t i = 0; i < rows_.size(); ++i) {
+        SpringRow& row = rows_[i];
+        const Real target = i < elementCount_ ? warm_[i] : 0;
+        applySpringImpulse(bodies[row.bodyA], bodies[row.bodyB], row, target - row.impulse);
+        if (i < elementCount_)
+            tension_[i] = std::max<Real>(0, -(row.impulse + row.knownImpulse) / h_);
+        row.impulse = target;
+    }
+    rows_.resize(elementCount_);
+    owner_.clear();
+    addTransverseRows(bodies);
+    start(bodies);
+    return true;
+}
+
+Real SpringBlockSolver::settle(std::span<SolverBody> bodies) {
+    const std::span<SpringRow> rows(rows_);
     settled_ = true;
     // Rows left out keep no warm-start impulse.
     for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -317,6 +441,8 @@ Real SpringBlockSolver::solve(std::span<SolverBody> bodies, std::span<SpringRow>
                                     : springRowSpeed(a, b, row) + row.bias > kFlipSpeed;
             changed = changed || wanted_[i] != active_[i];
         }
+        for (std::size_t i = elementCount_; i < rows.size(); ++i)
+            wanted_[i] = wanted_[owner_[i - elementCount_]];
         if (!changed)
             return change;
         // Undo the round, release the rows that leave, and solve again with the new set.

@@ -111,8 +111,25 @@ TEST_P(BothFormulations, TensionOnlyThreadPushesNothing) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Spring, BothFormulations,
-                         ::testing::Values(SpringFormulation::Explicit,
-                                           SpringFormulation::Implicit));
+                         ::testing::Values(SpringFormulation::Explicit, SpringFormulation::Implicit,
+                                           SpringFormulation::BackwardEuler));
+
+TEST(Spring, NumericalDampingOutsideItsRangeIsRefused) {
+    World world(weightlessWorld());
+    const BodyId body = addMass(world, Vec3(1.1, 0, 0));
+    SpringDef def;
+    def.bodyA = body;
+    def.stiffness = 10;
+    for (const Real bad : {-0.1, 1.5, std::numeric_limits<Real>::quiet_NaN()}) {
+        def.numericalDamping = bad;
+        try {
+            world.createSpring(def);
+            ADD_FAILURE() << "numericalDamping = " << bad << " was accepted";
+        } catch (const InvalidArgument& e) {
+            EXPECT_NE(std::string(e.what()).find("SpringDef.numericalDamping"), std::string::npos);
+        }
+    }
+}
 
 // Implicit at omega h = 100 (k = 10^4 N/m, m = 1 kg, h = 1 s): bounded, and the energy only
 // falls (implicit Euler dissipates what the step cannot resolve).

@@ -24,6 +24,7 @@ struct ThreadDef {
     Real damping = 0;          ///< c per segment (N s/m), finite and >= 0
     bool tensionOnly = true;   ///< threads pull, never push
     SpringFormulation formulation = SpringFormulation::Implicit;
+    Real numericalDamping = 0;  ///< in [0, 1], see SpringDef::numericalDamping
 };
 
 /// The nodes of a string or net.

@@ -27,6 +27,19 @@
 /// was then taken away: a 40 x 40 net draping a cylinder gained 98 % of its energy that way,
 /// against 4 % without the clamp.
 ///
+/// Geometric stiffness. A row pulls along the line between its anchors at the step's start, so
+/// a taut element's transverse stiffness T / L (the string's restoring force) is explicit, and
+/// a taut chain's transverse modes blew up once omega_t h > ~2.2 (a 30-bead hanging chain at
+/// h = 1/55). With prepare()'s step h, every taut row marked geometricStiffness whose transverse
+/// mode the step does not resolve adds two transverse rows, directions t perpendicular to n:
+/// soft rows of stiffness T / L (T the last step's tension, >= 0, so the block stays positive
+/// definite for threads) and no stretch at the step's start, in the row's own scheme -- their
+/// impulse is the change of the transverse force over the step, -h T / L (w1 h J_t v1 -
+/// w_1 h J_t v0). They follow their element in the tension-only active set and report nothing.
+/// A settled first solve that leaves a taut element's transverse stiffness explicit beyond
+/// leapfrog's limit (the first step, a catch) is undone and solved again with rows from its
+/// tensions.
+///
 /// Deterministic: rows in array order, fixed ordering for a fixed pattern.
 
 #include <cstdint>
@@ -41,13 +54,18 @@ namespace tumble {
 class SpringBlockSolver {
 public:
     /// Analyses the rows' pattern if it changed, assembles and factors K with every usable row
-    /// active. Call after prepareSpringRows().
-    void prepare(std::span<const SolverBody> bodies, std::span<const SpringRow> rows);
+    /// active. Call after prepareSpringRows(). h > 0 (the step) adds the taut elements'
+    /// transverse rows (see above); 0 leaves them out (rigid rows, projections).
+    void prepare(std::span<const SolverBody> bodies, std::span<const SpringRow> rows, Real h = 0);
 
     /// One exact update of every active row given the bodies' current velocities (contacts
     /// included); the first call after prepare() also settles which tension-only rows are
-    /// active. Returns the largest change of a row's J v (m/s), for the solver's tolerance.
+    /// active. `rows` are prepare()'s. Returns the largest change of a row's J v (m/s), for
+    /// the solver's tolerance.
     Real solve(std::span<SolverBody> bodies, std::span<SpringRow> rows);
+
+    /// Transverse rows added by the last prepare(), for the benchmarks.
+    std::size_t transverseRows() const { return rows_.size() - elementCount_; }
 
     /// Whether the last prepare() factored K (false without rows, or on a numerically singular
     /// K); the caller then solves the rows by Gauss-Seidel instead.
@@ -66,6 +84,15 @@ private:
         bool sideBJ;
     };
 
+    void addTransverseRows(std::span<const SolverBody> bodies);
+    /// Sets which rows start active, assembles and factors K.
+    void start(std::span<const SolverBody> bodies);
+    Real solveRows(std::span<SolverBody> bodies);
+    /// The first solve of a step: settles the tension-only active set.
+    Real settle(std::span<SolverBody> bodies);
+    /// Whether the settled solve's tensions leave a taut element's transverse rows far from
+    /// the tension they were built with; if so, undoes the solve and rebuilds them with it.
+    bool refreshTransverseRows(std::span<SolverBody> bodies);
     bool samePattern(std::span<const SpringRow> rows) const;
     void analyse(std::span<const SpringRow> rows);
     void assemble(std::span<const SolverBody> bodies, std::span<const SpringRow> rows);
@@ -77,6 +104,13 @@ private:
     /// chosen may stretch them, and nothing else would stop it.
     Real relaxSlackRows(std::span<SolverBody> bodies, std::span<SpringRow> rows);
 
+    // The elements' rows, then their transverse rows (owner_: the element of each).
+    std::vector<SpringRow> rows_;
+    std::vector<std::uint32_t> owner_;
+    std::size_t elementCount_ = 0;
+    Real h_ = 0;                 ///< prepare()'s step; 0: no transverse rows
+    std::vector<Real> warm_;     ///< the elements' impulses at prepare()
+    std::vector<Real> tension_;  ///< each element's tension for its transverse rows (N)
     // Pattern key: the rows' bodies.
     std::vector<std::uint32_t> keyA_;
     std::vector<std::uint32_t> keyB_;

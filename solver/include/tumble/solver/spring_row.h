@@ -1,19 +1,49 @@
 #pragma once
 /// Implicit spring-dampers as soft constraint rows (Catto's soft constraints), solved in
-/// ConstraintSolver's PGS sweeps next to the contacts.
+/// ConstraintSolver's sweeps next to the contacts (exactly, by spring_block.h, by default).
 ///
 /// A spring of rest length L0, stiffness k and damping c between anchors at distance L pulls with
-/// the tension k (L - L0) + c dL/dt. Implicit Euler on it, with C = L - L0 and J v = dL/dt, asks
-/// for the impulse lambda (along the line, on B; negative pulls the anchors together)
+/// the tension k (L - L0) + c dL/dt; C = L - L0, J v = dL/dt, and lambda is the impulse along the
+/// line on B (negative pulls the anchors together).
 ///
-///     lambda = -h (k C(x1) + c J v1),   C(x1) ~ C + h J v1
-///  => J v1 + (beta / h) C + gamma lambda = 0,  gamma = 1 / (h (c + h k)),  beta = h k / (c + h k),
+/// The bodies move by symplectic Euler, x1 = x0 + h v1, so the velocity v1 the solver returns is
+/// the mean velocity over the step and v0 (the velocity at the step's start) that over the last
+/// one: x_{-1} = x0 - h v0. In these variables Newmark's family reads as a three-level scheme,
 ///
-/// a row whose effective mass is 1 / (J M^-1 J' + gamma). It is stable at any stiffness (implicit
-/// Euler damps the modes it cannot resolve instead of amplifying them) and rigid in the limit
-/// k -> inf. The (beta / h) C term is the spring's force, not a stabilisation bias: it is the same
-/// in the solver's biased and relax sweeps, so a split-impulse step moves the bodies by exactly
-/// the spring's impulse. Tension-only elements (threads) are one-sided rows, lambda <= 0.
+///     v1 - v0 = h M^-1 (f_ext + w1 f(x1) + w0 f(x0) + w_1 f(x_{-1})),   w1 + w0 + w_1 = 1,
+///
+/// Symmetric weights (beta, 1 - 2 beta, beta) are second order and keep a linear mode's roots
+/// on the unit circle (no numerical damping) while (omega h)^2 (1 - 4 beta) <= 4; beta = 1/12
+/// (Fox-Goodwin) also makes the phase fourth order, beta = 1/4 (the trapezoidal rule) is stable
+/// at every omega h. But in these variables an undamped scheme conserves a form that weighs the
+/// positions by ~omega h / 2 at large omega h: a stiff spring released stretched at omega h =
+/// 100 swung its mass 90x further than the stretch. Hence, by the element's (omega h)^2 =
+/// h^2 k J M^-1 J' (prepareSpringRow): <= 1.5 beta = 1/12; up to 4 beta = 1/4 - 1/(4 (omega
+/// h)^2), stable for a node's highest mode (~2x its element's); from 4 the damped weights
+/// w1 = 1 / (1 + rho)^2, w0 = 2 rho w1, w_1 = rho^2 w1, which put both roots at omega h -> inf
+/// on -rho, with rho = 4 / (omega h)^2 (rho = 0: implicit Euler, weights 1, 0, 0). The row's
+/// spectralRadius scales rho (1 - SpringDef::numericalDamping; 0 for backward Euler) and, below
+/// 1, selects the damped weights at every omega h. Damping takes the mean rate over the same
+/// stencil, a = 1/2 (central: it dissipates exactly c (dL/dt)^2) with symmetric weights,
+/// a = 1 / (1 + rho) on J v1 and 1 - a on J v0 with the damped ones. With C(x1) ~ C + h J v1
+/// and C(x_{-1}) ~ C - h J v0 (linearised about x0):
+///
+///     lambda = -h (k (C + h (w1 J v1 - w_1 J v0)) + c (a J v1 + (1 - a) J v0))
+///  => J v1 + bias + gamma lambda = 0,    r = h k w1 + c a,    gamma = 1 / (h r),
+///     bias = (k C - (h k w_1 - c (1 - a)) J v0) / r,
+///
+/// a row whose effective mass is 1 / (J M^-1 J' + gamma); rho = 0 gives back implicit Euler's
+/// gamma = 1 / (h (c + h k)) and bias = k C / (c + h k). Rigid in the limit k -> inf. The bias
+/// is the spring's force, not a stabilisation bias: it is the same in the solver's biased and
+/// relax sweeps, so a split-impulse step moves the bodies by exactly the spring's impulse.
+/// Tension-only elements (threads) take the known levels with their own law, T = k max(C, 0)
+/// (C_{-1} ~ C - h J v0): lambda = knownImpulse + the row's own impulse, knownImpulse =
+/// -h k (w0 max(C, 0) + w_1 max(C_{-1}, 0)) applied once, bias = (k w1 C + c (1 - a) J v0) / r,
+/// and the row is one-sided on the new level alone (its impulse <= 0: T1 >= 0). Linearising
+/// the slack levels instead (a push k C < 0) delayed each catch and release: the net-10 sweep's
+/// error was 2-4x larger. A thread slack over the last step (`catching`) with (omega h)^2 >
+/// 0.5 takes implicit Euler for that step: at omega_e h = 0.7 - 1.2 the three-level catches
+/// pumped a tumbling net's energy without bound (explicit threads too, from 0.85).
 ///
 /// Deterministic: rows are solved in array order.
 
@@ -36,6 +66,17 @@ struct SpringRow {
     Real damping = 0;                ///< c (N s/m), >= 0
     bool tensionOnly = false;        ///< pulls only: lambda <= 0
     Real impulse = 0;                ///< accumulated lambda (N s): warm start in, result out
+    /// In [0, 1]: 1 the default weights, below 1 the damped ones scaled by it, 0 implicit
+    /// Euler (see above).
+    Real spectralRadius = 0;
+    /// Anchor B's velocity minus anchor A's at the step's start, before any force of the step
+    /// (m/s): J v0 of the scheme. Unused when spectralRadius = 0.
+    Vec3 startVelocity = Vec3::Zero();
+    /// A thread that was slack over the last step (see above).
+    bool catching = false;
+    /// The block solve adds the element's transverse (geometric) stiffness when it is taut
+    /// (SpringBlockSolver::prepare).
+    bool geometricStiffness = false;
 
     // Filled by prepareSpringRows().
     Vec3 angularA = Vec3::Zero();         ///< rA x n (m)
@@ -45,6 +86,9 @@ struct SpringRow {
     Real mass = 0;                        ///< 1 / (J M^-1 J' + gamma) (kg); 0: inactive row
     Real softness = 0;                    ///< gamma (1/kg)
     Real bias = 0;                        ///< (beta / h) C (m/s)
+    /// A thread's impulse from the scheme's known levels, -h (w0 T0 + w_1 T_-1) (N s), applied
+    /// once by prepareSpringRows(); `impulse` is the rest, the part the row solves for.
+    Real knownImpulse = 0;
 };
 
 /// The row's impulse lambda on its bodies: lambda n on B at its anchor, -lambda n on A.
@@ -61,9 +105,17 @@ inline Real springRowSpeed(const SolverBody& a, const SolverBody& b, const Sprin
            row.angularB.dot(b.angularVelocity) - row.angularA.dot(a.angularVelocity);
 }
 
-/// Jacobians, softness and effective masses for a step of length h; applies the warm-start
-/// impulses (or zeroes them when !warmStart). A row with k = c = 0, or whose anchors coincide
-/// (no direction), is inactive.
+/// One row's Jacobians, softness, bias and effective mass for a step of length h (its impulse
+/// untouched). A row with k = c = 0, or whose anchors coincide (no direction), gets mass 0:
+/// inactive.
+void prepareSpringRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h);
+
+/// Whether a prepared row's element is one the step does not resolve ((omega h)^2 >= 4): its
+/// scheme damps it, and its turning within the step wants post-stabilisation.
+bool springRowUnresolved(const SpringRow& row, Real h);
+
+/// prepareSpringRow() on every row, then applies the warm-start impulses (or zeroes them when
+/// !warmStart).
 void prepareSpringRows(std::span<SolverBody> bodies, std::span<SpringRow> rows, Real h,
                        bool warmStart);
 
