@@ -44,6 +44,25 @@ Real controlOutput(ControllerRecord& record, const JointFrame& frame, bool hinge
     return output;
 }
 
+// At its target: within this of it (rad or m; rad/s or m/s in velocity mode).
+constexpr Real kTargetTolerance = 1e-4;
+// Stalled: the joint moves slower than this (rad/s or m/s), so over timeToSleep (0.5 s) it would
+// close less than a twentieth of the target tolerance.
+constexpr Real kStalledSpeed = 1e-5;
+
+// May the controller's bodies sleep? Only at the target, or -- for a law without an integral,
+// whose output then no longer changes -- stalled short of it in balance (a PD arm drooping under
+// gravity, or pressed against something). A moving set-point is never reached.
+bool settled(const ControllerRecord& record, const JointFrame& frame) {
+    const ControllerDef& def = record.def;
+    if (def.targetVelocity != 0)
+        return false;
+    if (def.mode == ControlMode::Velocity)
+        return std::abs(record.state.error) <= kTargetTolerance;
+    return std::abs(record.state.error) <= kTargetTolerance ||
+           (def.ki == 0 && std::abs(frame.speed) <= kStalledSpeed);
+}
+
 }  // namespace
 
 ControllerRecord* Controllers::find(JointId joint) {
@@ -96,6 +115,13 @@ void Controllers::apply(const JointStore& joints, BodyStore& bodies, Real h) {
             continue;  // asleep (or held by static bodies): nothing to drive, nothing to integrate
         const bool hinge = joint.def.type == JointType::Hinge;
         const Real output = controlOutput(record, frame, hinge, h);
+        if (!settled(record, frame)) {
+            // Still driving: the bodies do not count as still this step (Islands::updateSleep).
+            if (movesA)
+                bodies.info[frame.a].pushed = true;
+            if (movesB)
+                bodies.info[frame.b].pushed = true;
+        }
         if (hinge) {
             // A torque along the axis turns B counter-clockwise relative to A: angle up.
             const Vec3 torque = output * frame.axis;

@@ -36,7 +36,8 @@ public:
     /// Forces stage: each controller whose joint is unbroken and has an awake dynamic body
     /// computes its output from the current state and adds it as a torque (hinge) or force
     /// (slider) to the joint's awake dynamic bodies, equal and opposite. Controllers of
-    /// destroyed joints are dropped.
+    /// destroyed joints are dropped. A controller not yet at its target (nor stalled short of
+    /// it without an integral) marks its bodies pushed, so they do not fall asleep.
     void apply(const JointStore& joints, BodyStore& bodies, Real h);
     /// The start of a step: what restore() returns to (once per step, not per substep).
     void save();

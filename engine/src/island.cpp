@@ -13,11 +13,12 @@ bool isTouching(const Contact& contact) {
     return contact.manifold.pointCount > 0;
 }
 
-/// An island that touches nothing falls asleep only in a step that changed no point of any of its
-/// bodies' velocity by more than this times h (m/s^2): 0.05 % of g, so a weight on a spring
-/// sleeps within 0.05 % of its static deflection (its unbalanced force is k x = m a). See
-/// docs/ARCHITECTURE.md, "Islands and sleeping", for why islands held by contacts are exempt.
-constexpr Real kSleepAcceleration = 0.005;
+/// An island that touches nothing falls asleep only in a step whose every body is within this
+/// fraction of its static balance: frozen where it is, its spring stretches are within 1e-4 of
+/// the static ones (docs/ARCHITECTURE.md, "Islands and sleeping", derives the bound below).
+constexpr Real kBalanceFraction = 1e-4;
+/// The acceleration the fraction is taken of when the world has no gravity (m/s^2).
+constexpr Real kStandardGravity = 9.81;
 
 /// How much the step changed the velocity of the body's fastest-changing point (m/s): the net
 /// effect of gravity, springs, joints, drag and controllers, so no force needs adding up.
@@ -26,6 +27,21 @@ Real velocityChange(const BodyStore& bodies, std::uint32_t index) {
     const BodyMotion& before = bodies.previousMotion[index];
     return (m.linearVelocity - before.linearVelocity).norm() +
            bodies.info[index].extent * (m.angularVelocity - before.angularVelocity).norm();
+}
+
+/// The speed of the body's fastest point (m/s): its centre's plus its turn at its extent.
+Real pointSpeed(const BodyStore& bodies, std::uint32_t index) {
+    const BodyMotion& m = bodies.motion[index];
+    return m.linearVelocity.norm() + bodies.info[index].extent * m.angularVelocity.norm();
+}
+
+/// In balance: frozen now, the body would gain at most 1e-4 g h in its next step. Its unbalanced
+/// static force F = M dv/h + D v (D any damping on it), so both the step's velocity change and
+/// the velocity itself are bounded, by half the budget each: F / (M g) <= 1e-4 (1 + h D/M) / 2.
+/// A body nothing links or damps has D = 0: its velocity is free (a slow drift in empty space).
+bool inBalance(const BodyStore& bodies, std::uint32_t index, bool damped, Real bound) {
+    return velocityChange(bodies, index) <= bound &&
+           (!damped || pointSpeed(bodies, index) <= bound);
 }
 
 }  // namespace
@@ -110,8 +126,8 @@ void Islands::wakeTouched(BodyStore& bodies, ContactManager& contacts, const Ste
 }
 
 void Islands::updateSleep(BodyStore& bodies, ContactManager& contacts, const SpringStore& springs,
-                          const JointStore& joints, const StepContext& context,
-                          const WorldDef& settings) {
+                          const DragStore& drag, const JointStore& joints,
+                          const StepContext& context, const WorldDef& settings) {
     if (!settings.enableSleep)
         return;
     const Real linear = settings.linearSleepVelocity;
@@ -140,7 +156,7 @@ void Islands::updateSleep(BodyStore& bodies, ContactManager& contacts, const Spr
     const std::uint32_t count = static_cast<std::uint32_t>(bodies.awake.size());
     parent_.resize(count);
     std::iota(parent_.begin(), parent_.end(), 0u);
-    touches_.assign(count, 0);
+    flags_.assign(count, 0);
     for (const std::uint32_t slot : contacts.activeSlots()) {
         const Contact& contact = contacts.contact(slot);
         if (!contacts.isActive(slot) || !isTouching(contact))
@@ -150,9 +166,9 @@ void Islands::updateSleep(BodyStore& bodies, ContactManager& contacts, const Spr
         const bool dynamicA = bodies.isAwakeDynamic(a);
         const bool dynamicB = bodies.isAwakeDynamic(b);
         if (dynamicA)
-            touches_[bodies.info[a].awakeIndex] = 1;
+            flags_[bodies.info[a].awakeIndex] |= kTouches;
         if (dynamicB)
-            touches_[bodies.info[b].awakeIndex] = 1;
+            flags_[bodies.info[b].awakeIndex] |= kTouches;
         if (dynamicA && dynamicB) {
             unite(bodies.info[a].awakeIndex, bodies.info[b].awakeIndex);
         } else if (dynamicA && bodies.isMovingKinematic(b)) {
@@ -161,13 +177,23 @@ void Islands::updateSleep(BodyStore& bodies, ContactManager& contacts, const Spr
             bodies.info[b].sleepTime = 0;
         }
     }
+    // What may damp a body: a spring or joint on it (dampers, joint drives, controllers' kd),
+    // drag, or its own damping.
+    const auto markDamped = [&](std::uint32_t index) {
+        if (bodies.isAwakeDynamic(index))
+            flags_[bodies.info[index].awakeIndex] |= kDamped;
+    };
+    for (const BodyId body : drag.bodies)
+        markDamped(bodies.indexOf(body));
     // Springs and unbroken joints unite their two bodies exactly as touching contacts do (one
     // to a world point joins nothing).
     const auto link = [&](BodyId bodyA, BodyId bodyB) {
+        markDamped(bodies.indexOf(bodyA));
         if (bodyB.isNull())
             return;
         const std::uint32_t a = bodies.indexOf(bodyA);
         const std::uint32_t b = bodies.indexOf(bodyB);
+        markDamped(b);
         const bool dynamicA = bodies.isAwakeDynamic(a);
         const bool dynamicB = bodies.isAwakeDynamic(b);
         if (dynamicA && dynamicB) {
@@ -181,22 +207,34 @@ void Islands::updateSleep(BodyStore& bodies, ContactManager& contacts, const Spr
     for (const SpringDef& def : springs.defs)
         link(def.bodyA, def.bodyB);
     for (std::uint32_t i = 0; i < joints.count(); ++i) {
-        if (!joints.state[i].broken)
-            link(joints.records[i].def.bodyA, joints.records[i].def.bodyB);
+        if (joints.state[i].broken)
+            continue;
+        const JointDef& def = joints.records[i].def;
+        link(def.bodyA, def.bodyB);
+        // A running motor drives its bodies however slowly they turn: they never count as still.
+        if (def.enableMotor && def.motorSpeed != 0 && def.maxMotorForce > 0) {
+            bodies.info[bodies.indexOf(def.bodyA)].sleepTime = 0;
+            if (!def.bodyB.isNull())
+                bodies.info[bodies.indexOf(def.bodyB)].sleepTime = 0;
+        }
     }
 
     islandSleepTime_.assign(count, std::numeric_limits<Real>::infinity());
     islandBalance_.assign(count, kInBalance);
-    const Real change = kSleepAcceleration * context.h;
+    const Real gravity = context.gravity.norm();
+    const Real bound =
+        0.5 * kBalanceFraction * (gravity > 0 ? gravity : kStandardGravity) * context.h;
     for (std::uint32_t k = 0; k < count; ++k) {
         const BodyInfo& info = bodies.info[bodies.awake[k]];
         if (info.type == BodyType::Dynamic) {
             const std::uint32_t root = find(k);
             islandSleepTime_[root] = std::min(islandSleepTime_[root], info.sleepTime);
-            if (touches_[k] != 0)
+            const bool damped =
+                (flags_[k] & kDamped) != 0 || info.linearDamping > 0 || info.angularDamping > 0;
+            if ((flags_[k] & kTouches) != 0)
                 islandBalance_[root] = kHeld;
             else if (islandBalance_[root] == kInBalance &&
-                     velocityChange(bodies, bodies.awake[k]) > change)
+                     !inBalance(bodies, bodies.awake[k], damped, bound))
                 islandBalance_[root] = kOutOfBalance;
         }
     }

@@ -11,9 +11,11 @@
 /// otherwise, or when it may not sleep, or when it touches
 /// a moving kinematic body. Only when some timer has reached timeToSleep is a union-find run over
 /// the awake bodies and touching active contacts; an island sleeps when its smallest timer has,
-/// and -- when no touching contact holds any of its bodies -- in a step that changed no point's
-/// velocity by more than kSleepAcceleration h (a weight on a spring is slow near the ends of a
-/// small bounce, but not in balance there).
+/// and -- when no touching contact holds any of its bodies -- in a step in which every body is in
+/// balance: no point's velocity changed by more than 5e-5 g h, nor -- if a spring, joint, drag or
+/// damping may act on it -- moves faster than that (a weight on a spring is slow near the ends
+/// of a small bounce, or while a damper holds it, but not in balance there). A controller not
+/// at its target keeps its joint's bodies awake, and so does a running joint motor.
 /// Sleeping bodies lose their velocities, leave BodyStore::awake, and their contacts with
 /// nothing awake on the other side are parked (ContactManager), so no per-step loop visits them.
 ///
@@ -64,7 +66,7 @@ public:
     /// Sleep stage: timers, and the islands still for timeToSleep fall asleep. Springs join
     /// their two bodies' islands as touching contacts do, and so do unbroken joints.
     void updateSleep(BodyStore& bodies, ContactManager& contacts, const SpringStore& springs,
-                     const JointStore& joints, const StepContext& context,
+                     const DragStore& drag, const JointStore& joints, const StepContext& context,
                      const WorldDef& settings);
 
     /// Where sleep and wake events go (the world's pending log); none when null.
@@ -82,7 +84,9 @@ private:
 
     std::vector<std::uint32_t> parent_;
     std::vector<Real> islandSleepTime_;  ///< smallest timer of each set, at its root
-    std::vector<std::uint8_t> touches_;  ///< per awake-list position: has a touching contact
+    /// Per awake-list position: has a touching contact; may something damp it (balance test)?
+    enum Flag : std::uint8_t { kTouches = 1, kDamped = 2 };
+    std::vector<std::uint8_t> flags_;
     /// Per set, at its root: does a contact hold it, else is it in balance this step?
     enum Balance : std::uint8_t { kInBalance, kOutOfBalance, kHeld };
     std::vector<std::uint8_t> islandBalance_;

@@ -111,9 +111,15 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
         SolverBody& s = solverBodies_[1 + k];
         s.linearVelocity = m.linearVelocity;
         s.angularVelocity = m.angularVelocity;
-        s.inverseMass = inertia.inverseMass;
+        // Implicit damping, (M + h D) u1 = M u0 + h f + J'lambda: integrateVelocity divided
+        // u0 + h M^-1 f by 1 + h c; the rows' impulses must be divided by it too, or damping
+        // would eat the part of the weight a spring or joint carries (rest 1/(1 + h c) short).
+        // So the rows see the damped mass M (1 + h c). No damping: bitwise the plain mass.
+        const BodyInfo& info = bodies.info[i];
+        s.inverseMass = inertia.inverseMass / (1 + context.h * info.linearDamping);
         const Mat3 rotation = m.orientation.toRotationMatrix();
-        s.inverseInertia = rotation * inertia.inverseInertiaLocal * rotation.transpose();
+        s.inverseInertia = rotation * inertia.inverseInertiaLocal * rotation.transpose() /
+                           (1 + context.h * info.angularDamping);
     }
 
     const std::span<ContactConstraint> constraints =

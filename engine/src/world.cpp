@@ -323,7 +323,7 @@ StepStatus World::step() {
     });
     w.profile.sleep = timed([&] {
         if (status.ok())
-            w.islands.updateSleep(w.bodies, w.contacts, w.springs, w.joints, w.context(),
+            w.islands.updateSleep(w.bodies, w.contacts, w.springs, w.drag, w.joints, w.context(),
                                   w.settings);
     });
     w.publishEvents();

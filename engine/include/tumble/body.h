@@ -36,10 +36,12 @@ struct BodyDef {
     Vec3 linearVelocity = Vec3::Zero();   ///< of the centre of mass, world frame (m/s)
     Vec3 angularVelocity = Vec3::Zero();  ///< world frame (rad/s)
     MassProperties mass{};                ///< used by dynamic bodies only
-    Real linearDamping = 0;               ///< (1/s), >= 0; applied implicitly: v /= 1 + h c
-    Real angularDamping = 0;              ///< (1/s), >= 0; applied implicitly
-    Real gravityScale = 1;                ///< multiplies the world's gravity for this body
-    std::uint64_t userData = 0;           ///< opaque to the engine, handed back by World::userData
+    /// (1/s), >= 0; implicit, (1 + h c) v1 = v0 + h (every force, contacts', springs' and
+    /// joints' included) / m: terminal speed F / (m c), and no effect on where a body rests.
+    Real linearDamping = 0;
+    Real angularDamping = 0;     ///< (1/s), >= 0; implicit in the same way
+    Real gravityScale = 1;       ///< multiplies the world's gravity for this body
+    std::uint64_t userData = 0;  ///< opaque to the engine, handed back by World::userData
     /// May the body fall asleep? A body that may not keeps its whole island awake (dynamic
     /// bodies only; see WorldDef::enableSleep).
     bool allowSleep = true;
