@@ -299,6 +299,16 @@ void ContactManager::flushActivations() {
     std::merge(active_.begin(), active_.end(), activated_.begin(), activated_.end(),
                std::back_inserter(scratch_), byKey);
     active_.swap(scratch_);
+    // The touching ones among them (a woken island's parked manifolds) join touching_ likewise.
+    std::erase_if(activated_, [this](std::uint32_t slot) {
+        return pool_[slot].contact.manifold.pointCount == 0;
+    });
+    if (!activated_.empty()) {
+        touchingScratch_.clear();
+        std::merge(touching_.begin(), touching_.end(), activated_.begin(), activated_.end(),
+                   std::back_inserter(touchingScratch_), byKey);
+        touching_.swap(touchingScratch_);
+    }
     activated_.clear();
 }
 
@@ -318,6 +328,7 @@ void ContactManager::updateContacts(const ShapeStore& shapes, BodyStore& bodies,
             destroy(slot, bodies);
     }
     compactActive();
+    touching_.clear();  // not merged into below: collideActive lists every touching pair
     for (const ProxyPair& pair : broadphase_.addedPairs())
         create(pair, shapes, bodies);
     placedProxies_.clear();
@@ -338,6 +349,7 @@ void ContactManager::collideActive(const ShapeStore& shapes, BodyStore& bodies,
                                    const StepContext& context) {
     constexpr std::size_t kAhead = 8;  // pairs fetched ahead (about the misses a core overlaps)
     work_.clear();
+    touching_.clear();
     for (std::size_t i = 0; i < active_.size(); ++i) {
         if (i + kAhead < active_.size())
             __builtin_prefetch(&state_[active_[i + kAhead]]);
@@ -367,11 +379,13 @@ void ContactManager::collideActive(const ShapeStore& shapes, BodyStore& bodies,
             for (std::size_t line = 0; line < sizeof(Record); line += 64)
                 __builtin_prefetch(ahead + line);
         }
-        collidePair(work_[i], shapes, bodies);
+        // The pairs skipped above hold no points: the touching ones are all here, in pair order.
+        if (collidePair(work_[i], shapes, bodies))
+            touching_.push_back(work_[i].slot);
     }
 }
 
-void ContactManager::collidePair(const PairWork& work, const ShapeStore& shapes,
+bool ContactManager::collidePair(const PairWork& work, const ShapeStore& shapes,
                                  BodyStore& bodies) {
     Manifold manifold;
     if (work.near) {
@@ -389,6 +403,7 @@ void ContactManager::collidePair(const PairWork& work, const ShapeStore& shapes,
         reportTouch(contact, is, bodies, work.indexA, work.indexB);
     if (is)
         wakeTouched(bodies, work.indexA, work.indexB);
+    return is;
 }
 
 void ContactManager::reportTouch(const Contact& contact, bool began, const BodyStore& bodies,

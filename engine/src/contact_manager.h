@@ -69,6 +69,11 @@ public:
     /// Slots of the active contacts in pair order. Contacts parked since the last narrowphase
     /// stay listed (isActive false) until the next one.
     std::span<const std::uint32_t> activeSlots() const { return active_; }
+    /// The active contacts with points, in pair order: what the solve, the sleep stage's islands
+    /// and the impacts walk (a settled pile's active list is four-fifths neighbours that do not
+    /// touch). Built by the narrowphase and kept by flushActivations; like activeSlots(), a slot
+    /// parked or destroyed since stays listed until the next narrowphase (check isActive).
+    std::span<const std::uint32_t> touchingSlots() const { return touching_; }
     bool isActive(std::uint32_t slot) const { return state_[slot].active; }
     /// False once the contact is destroyed (its slot may be reused after the next narrowphase).
     bool isAlive(std::uint32_t slot) const { return state_[slot].alive; }
@@ -169,7 +174,8 @@ private:
         bool near;    ///< the boxes are within the margin: collide (else the manifold is empty)
     };
     void collideActive(const ShapeStore& shapes, BodyStore& bodies, const StepContext& context);
-    void collidePair(const PairWork& work, const ShapeStore& shapes, BodyStore& bodies);
+    /// Whether the pair's new manifold has points.
+    bool collidePair(const PairWork& work, const ShapeStore& shapes, BodyStore& bodies);
     /// A contact began (got its first points) or ended (lost its last): events and warnings.
     void reportTouch(const Contact& contact, bool began, const BodyStore& bodies,
                      std::uint32_t indexA, std::uint32_t indexB);
@@ -189,7 +195,9 @@ private:
     std::vector<std::uint32_t> dead_;       ///< destroyed, not yet free
     std::vector<std::uint32_t> active_;     ///< sorted by key
     std::vector<std::uint32_t> activated_;  ///< to merge into active_
+    std::vector<std::uint32_t> touching_;   ///< sorted by key; see touchingSlots()
     std::vector<std::uint32_t> scratch_;
+    std::vector<std::uint32_t> touchingScratch_;
     std::vector<PairWork> work_;  ///< collideActive's second pass
     std::vector<std::uint32_t> wakeRequests_;
     std::vector<std::uint32_t> placedProxies_;  ///< sorted; see markPlaced
