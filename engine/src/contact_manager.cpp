@@ -213,8 +213,8 @@ void ContactManager::create(const ProxyPair& pair, const ShapeStore& shapes, Bod
     record.contact.shapeB = shapes.idAt(slotB);
     record.contact.bodyA = shapeA.body;
     record.contact.bodyB = shapeB.body;
-    record.key = pair;
-    state_[slot] = SlotState{.shapeA = slotA, .shapeB = slotB, .alive = true, .cleared = true};
+    state_[slot] =
+        SlotState{.key = pair, .shapeA = slotA, .shapeB = slotB, .alive = true, .cleared = true};
     link(slot, 0, bodies.info[indexA]);
     link(slot, 1, bodies.info[indexB]);
     if (bodies.isAwake(indexA) || bodies.isAwake(indexB))
@@ -266,7 +266,7 @@ std::uint32_t ContactManager::find(const ProxyPair& pair, const ShapeStore& shap
         index = bodies.indexOf(shapeB.body);
     for (std::uint32_t edge = bodies.info[index].firstContact; edge != kNone;
          edge = pool_[edge >> 1].next[edge & 1]) {
-        if (pool_[edge >> 1].key == pair)
+        if (state_[edge >> 1].key == pair)
             return edge >> 1;
     }
     return kNone;
@@ -290,7 +290,7 @@ void ContactManager::flushActivations() {
         return !(state.alive && state.active && !state.listed);
     });
     const auto byKey = [this](std::uint32_t a, std::uint32_t b) {
-        return pool_[a].key < pool_[b].key;
+        return state_[a].key < state_[b].key;
     };
     std::sort(activated_.begin(), activated_.end(), byKey);
     for (const std::uint32_t slot : activated_)
@@ -437,7 +437,7 @@ std::span<const Contact> ContactManager::contacts() const {
             viewOrder_.push_back(slot);
     }
     std::sort(viewOrder_.begin(), viewOrder_.end(),
-              [this](std::uint32_t a, std::uint32_t b) { return pool_[a].key < pool_[b].key; });
+              [this](std::uint32_t a, std::uint32_t b) { return state_[a].key < state_[b].key; });
     view_.clear();
     for (const std::uint32_t slot : viewOrder_)
         view_.push_back(pool_[slot].contact);

@@ -129,7 +129,6 @@ private:
     /// impulses) or its bodies' lists change.
     struct Record {
         Contact contact;
-        ProxyPair key;
         /// Edges (slot * 2 + side; side 0 = body A, 1 = body B) of the neighbours on body A's
         /// [0] and body B's [1] contact lists.
         std::array<std::uint32_t, 2> next{kNone, kNone};
@@ -140,6 +139,9 @@ private:
     /// boxes stay apart; the narrowphase decides them from this and the shapes' boxes alone,
     /// without touching their 400-byte records.
     struct SlotState {
+        /// The pair, which orders active_: merging activations into it compares the keys of
+        /// every listed contact (at 4,000 bodies a read from each of 52k records per step).
+        ProxyPair key;
         std::uint32_t shapeA = 0;  ///< shape slots (contact.shapeA.index, contact.shapeB.index)
         std::uint32_t shapeB = 0;
         bool alive = false;
