@@ -350,6 +350,9 @@ void ContactManager::collideActive(const ShapeStore& shapes, BodyStore& bodies,
     constexpr std::size_t kAhead = 8;  // pairs fetched ahead (about the misses a core overlaps)
     work_.clear();
     touching_.clear();
+    ++narrowphaseCount_;
+    if (poses_.size() < shapes.records.size())
+        poses_.resize(shapes.records.size());
     for (std::size_t i = 0; i < active_.size(); ++i) {
         if (i + kAhead < active_.size())
             __builtin_prefetch(&state_[active_[i + kAhead]]);
@@ -392,8 +395,8 @@ bool ContactManager::collidePair(const PairWork& work, const ShapeStore& shapes,
         const SlotState& state = state_[work.slot];
         const ShapeRecord& shapeA = shapes.records[state.shapeA];
         const ShapeRecord& shapeB = shapes.records[state.shapeB];
-        collide(shapeA.def.geometry, shapePose(shapeA, bodies), shapeB.def.geometry,
-                shapePose(shapeB, bodies), work.margin, manifold);
+        collide(shapeA.def.geometry, posedShape(state.shapeA, shapes, bodies), shapeB.def.geometry,
+                posedShape(state.shapeB, shapes, bodies), work.margin, manifold);
     }
     Contact& contact = pool_[work.slot].contact;
     const bool was = contact.manifold.pointCount > 0;
@@ -404,6 +407,16 @@ bool ContactManager::collidePair(const PairWork& work, const ShapeStore& shapes,
     if (is)
         wakeTouched(bodies, work.indexA, work.indexB);
     return is;
+}
+
+const Transform& ContactManager::posedShape(std::uint32_t slot, const ShapeStore& shapes,
+                                            const BodyStore& bodies) {
+    CachedPose& cached = poses_[slot];
+    if (cached.narrowphase != narrowphaseCount_) {
+        cached.pose = shapePose(shapes.records[slot], bodies);
+        cached.narrowphase = narrowphaseCount_;
+    }
+    return cached.pose;
 }
 
 void ContactManager::reportTouch(const Contact& contact, bool began, const BodyStore& bodies,
