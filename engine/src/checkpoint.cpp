@@ -305,7 +305,7 @@ struct CheckpointAccess {
             if (x.state_.size() != x.pool_.size())
                 x.state_.resize(x.pool_.size());
             ContactManager::SlotState& s = x.state_[slot];
-            fields(a, r.contact, r.key, r.next, r.previous, s.alive, s.active, s.listed, s.queued);
+            fields(a, r.contact, s.key, r.next, r.previous, s.alive, s.active, s.listed, s.queued);
             s.shapeA = r.contact.shapeA.index;
             s.shapeB = r.contact.shapeB.index;
             s.cleared = false;

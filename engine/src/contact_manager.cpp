@@ -213,8 +213,8 @@ void ContactManager::create(const ProxyPair& pair, const ShapeStore& shapes, Bod
     record.contact.shapeB = shapes.idAt(slotB);
     record.contact.bodyA = shapeA.body;
     record.contact.bodyB = shapeB.body;
-    record.key = pair;
-    state_[slot] = SlotState{.shapeA = slotA, .shapeB = slotB, .alive = true, .cleared = true};
+    state_[slot] =
+        SlotState{.key = pair, .shapeA = slotA, .shapeB = slotB, .alive = true, .cleared = true};
     link(slot, 0, bodies.info[indexA]);
     link(slot, 1, bodies.info[indexB]);
     if (bodies.isAwake(indexA) || bodies.isAwake(indexB))
@@ -266,7 +266,7 @@ std::uint32_t ContactManager::find(const ProxyPair& pair, const ShapeStore& shap
         index = bodies.indexOf(shapeB.body);
     for (std::uint32_t edge = bodies.info[index].firstContact; edge != kNone;
          edge = pool_[edge >> 1].next[edge & 1]) {
-        if (pool_[edge >> 1].key == pair)
+        if (state_[edge >> 1].key == pair)
             return edge >> 1;
     }
     return kNone;
@@ -290,7 +290,7 @@ void ContactManager::flushActivations() {
         return !(state.alive && state.active && !state.listed);
     });
     const auto byKey = [this](std::uint32_t a, std::uint32_t b) {
-        return pool_[a].key < pool_[b].key;
+        return state_[a].key < state_[b].key;
     };
     std::sort(activated_.begin(), activated_.end(), byKey);
     for (const std::uint32_t slot : activated_)
@@ -299,6 +299,16 @@ void ContactManager::flushActivations() {
     std::merge(active_.begin(), active_.end(), activated_.begin(), activated_.end(),
                std::back_inserter(scratch_), byKey);
     active_.swap(scratch_);
+    // The touching ones among them (a woken island's parked manifolds) join touching_ likewise.
+    std::erase_if(activated_, [this](std::uint32_t slot) {
+        return pool_[slot].contact.manifold.pointCount == 0;
+    });
+    if (!activated_.empty()) {
+        touchingScratch_.clear();
+        std::merge(touching_.begin(), touching_.end(), activated_.begin(), activated_.end(),
+                   std::back_inserter(touchingScratch_), byKey);
+        touching_.swap(touchingScratch_);
+    }
     activated_.clear();
 }
 
@@ -318,6 +328,7 @@ void ContactManager::updateContacts(const ShapeStore& shapes, BodyStore& bodies,
             destroy(slot, bodies);
     }
     compactActive();
+    touching_.clear();  // not merged into below: collideActive lists every touching pair
     for (const ProxyPair& pair : broadphase_.addedPairs())
         create(pair, shapes, bodies);
     placedProxies_.clear();
@@ -338,6 +349,10 @@ void ContactManager::collideActive(const ShapeStore& shapes, BodyStore& bodies,
                                    const StepContext& context) {
     constexpr std::size_t kAhead = 8;  // pairs fetched ahead (about the misses a core overlaps)
     work_.clear();
+    touching_.clear();
+    ++narrowphaseCount_;
+    if (poses_.size() < shapes.records.size())
+        poses_.resize(shapes.records.size());
     for (std::size_t i = 0; i < active_.size(); ++i) {
         if (i + kAhead < active_.size())
             __builtin_prefetch(&state_[active_[i + kAhead]]);
@@ -367,19 +382,21 @@ void ContactManager::collideActive(const ShapeStore& shapes, BodyStore& bodies,
             for (std::size_t line = 0; line < sizeof(Record); line += 64)
                 __builtin_prefetch(ahead + line);
         }
-        collidePair(work_[i], shapes, bodies);
+        // The pairs skipped above hold no points: the touching ones are all here, in pair order.
+        if (collidePair(work_[i], shapes, bodies))
+            touching_.push_back(work_[i].slot);
     }
 }
 
-void ContactManager::collidePair(const PairWork& work, const ShapeStore& shapes,
+bool ContactManager::collidePair(const PairWork& work, const ShapeStore& shapes,
                                  BodyStore& bodies) {
     Manifold manifold;
     if (work.near) {
         const SlotState& state = state_[work.slot];
         const ShapeRecord& shapeA = shapes.records[state.shapeA];
         const ShapeRecord& shapeB = shapes.records[state.shapeB];
-        collide(shapeA.def.geometry, shapePose(shapeA, bodies), shapeB.def.geometry,
-                shapePose(shapeB, bodies), work.margin, manifold);
+        collide(shapeA.def.geometry, posedShape(state.shapeA, shapes, bodies), shapeB.def.geometry,
+                posedShape(state.shapeB, shapes, bodies), work.margin, manifold);
     }
     Contact& contact = pool_[work.slot].contact;
     const bool was = contact.manifold.pointCount > 0;
@@ -389,6 +406,17 @@ void ContactManager::collidePair(const PairWork& work, const ShapeStore& shapes,
         reportTouch(contact, is, bodies, work.indexA, work.indexB);
     if (is)
         wakeTouched(bodies, work.indexA, work.indexB);
+    return is;
+}
+
+const Transform& ContactManager::posedShape(std::uint32_t slot, const ShapeStore& shapes,
+                                            const BodyStore& bodies) {
+    CachedPose& cached = poses_[slot];
+    if (cached.narrowphase != narrowphaseCount_) {
+        cached.pose = shapePose(shapes.records[slot], bodies);
+        cached.narrowphase = narrowphaseCount_;
+    }
+    return cached.pose;
 }
 
 void ContactManager::reportTouch(const Contact& contact, bool began, const BodyStore& bodies,
@@ -422,7 +450,7 @@ std::span<const Contact> ContactManager::contacts() const {
             viewOrder_.push_back(slot);
     }
     std::sort(viewOrder_.begin(), viewOrder_.end(),
-              [this](std::uint32_t a, std::uint32_t b) { return pool_[a].key < pool_[b].key; });
+              [this](std::uint32_t a, std::uint32_t b) { return state_[a].key < state_[b].key; });
     view_.clear();
     for (const std::uint32_t slot : viewOrder_)
         view_.push_back(pool_[slot].contact);

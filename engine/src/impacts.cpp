@@ -38,7 +38,7 @@ void ImpactTracker::update(const ContactManager& contacts, const BodyStore& bodi
         bySlot_.resize(contacts.slotCount());
     next_.clear();
     if (std::isfinite(threshold)) {
-        for (const std::uint32_t slot : contacts.activeSlots()) {
+        for (const std::uint32_t slot : contacts.touchingSlots()) {
             if (bySlot_[slot].open || !wasSolved(contacts, bodies, slot))
                 continue;  // an open impact takes this step's impulse below
             const Contact& contact = contacts.contact(slot);

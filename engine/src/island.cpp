@@ -157,7 +157,7 @@ void Islands::updateSleep(BodyStore& bodies, ContactManager& contacts, const Spr
     parent_.resize(count);
     std::iota(parent_.begin(), parent_.end(), 0u);
     flags_.assign(count, 0);
-    for (const std::uint32_t slot : contacts.activeSlots()) {
+    for (const std::uint32_t slot : contacts.touchingSlots()) {
         const Contact& contact = contacts.contact(slot);
         if (!contacts.isActive(slot) || !isTouching(contact))
             continue;

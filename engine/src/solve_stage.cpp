@@ -53,7 +53,7 @@ std::span<ContactConstraint> SolveStage::buildConstraints(const BodyStore& bodie
                                                           const StepContext& context) {
     std::size_t count = 0;
     constraintContact_.clear();
-    for (const std::uint32_t slot : contacts.activeSlots()) {
+    for (const std::uint32_t slot : contacts.touchingSlots()) {
         const Contact& contact = contacts.contact(slot);
         if (!contacts.isActive(slot) || contact.manifold.pointCount == 0)
             continue;
