@@ -1,0 +1,153 @@
+// Bodies on triangle meshes and height fields: no ghost bumps at internal edges (a sliding box
+// stops where Coulomb friction says, a rolling ball keeps its speed), a ball rolls down a height
+// field slope at (5/7) g sin(theta), and meshes are refused on dynamic bodies.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "tumble/collision/mesh_shape.h"
+#include "tumble/core/error.h"
+#include "tumble/world.h"
+
+namespace tumble {
+namespace {
+
+constexpr Real kGravity = 9.81;
+
+/// A flat square of n x n cells of side `cell` centred on the origin at z = 0 (2 n^2 triangles).
+TriangleMeshData flatGrid(int n, Real cell) {
+    TriangleMeshData data;
+    const Real half = n * cell / 2;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i)
+            data.vertices.emplace_back(i * cell - half, j * cell - half, 0);
+    const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(j * (n + 1) + i); };
+    for (int j = 0; j < n; ++j) {
+        for (int i = 0; i < n; ++i) {
+            data.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+            data.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+        }
+    }
+    return data;
+}
+
+BodyId flatMeshGround(World& world, Real friction) {
+    const BodyId ground = world.createBody(BodyDef{.type = BodyType::Static});
+    ShapeDef def{.geometry = TriangleMesh::fromData(flatGrid(40, 0.25))};
+    def.material.friction = friction;
+    world.createShape(ground, def);
+    return ground;
+}
+
+TEST(MeshContact, BoxSlidingAcrossFlatMeshStopsAtCoulombDistanceWithoutBumps) {
+    const Real mu = 0.5, speed = 5, half = 0.2;
+    World world;
+    flatMeshGround(world, mu);
+    // Launched along a direction that crosses the cells' sides and diagonals.
+    const Vec3 direction = Vec3(1, 0.3, 0).normalized();
+    BodyDef def;
+    def.position = Vec3(-3, -1, half) - 1.2 * direction;
+    def.linearVelocity = speed * direction;
+    const BodyId box = world.createBody(def);
+    ShapeDef shape{.geometry = Box{Vec3::Constant(half)}};
+    shape.material.friction = mu;
+    world.createShape(box, shape);
+
+    Real worstVertical = 0;
+    for (int step = 0; step < 240; ++step) {
+        ASSERT_TRUE(world.step().ok());
+        worstVertical = std::max(worstVertical, std::abs(world.linearVelocity(box).z()));
+    }
+    const Real travelled = (world.centerOfMass(box) - def.position).head<2>().norm();
+    const Real expected = speed * speed / (2 * mu * kGravity);
+    std::printf(
+        "box on mesh: stopped after %.4f m (Coulomb %.4f m, ratio %.5f), worst |vz| %.3g m/s\n",
+        travelled, expected, travelled / expected, worstVertical);
+    EXPECT_LT(world.linearVelocity(box).norm(), 1e-3) << "at rest";
+    EXPECT_NEAR(travelled / expected, 1, 0.02);
+    EXPECT_LT(worstVertical, 1e-3);
+}
+
+TEST(MeshContact, BallRollsAcrossFlatMeshAtConstantSpeed) {
+    const Real r = 0.15, speed = 2;
+    World world;
+    flatMeshGround(world, 0.6);
+    const Vec3 direction = Vec3(1, 0.3, 0).normalized();
+    BodyDef def;
+    def.position = Vec3(-3, -1, r);
+    def.linearVelocity = speed * direction;
+    def.angularVelocity = (speed / r) * Vec3(-direction.y(), direction.x(), 0);  // v = w x (r z)
+    const BodyId ball = world.createBody(def);
+    ShapeDef shape{.geometry = Sphere{r}};
+    shape.material.friction = 0.6;
+    world.createShape(ball, shape);
+
+    Real slowest = speed, fastest = speed, worstVertical = 0;
+    for (int step = 0; step < 120; ++step) {  // 2 s: 4 m, across 16 cells and their diagonals
+        ASSERT_TRUE(world.step().ok());
+        const Real v = world.linearVelocity(ball).head<2>().norm();
+        slowest = std::min(slowest, v);
+        fastest = std::max(fastest, v);
+        worstVertical = std::max(worstVertical, std::abs(world.linearVelocity(ball).z()));
+    }
+    std::printf("ball on mesh: speed %.6f .. %.6f m/s (start %.1f), worst |vz| %.3g m/s\n", slowest,
+                fastest, speed, worstVertical);
+    EXPECT_NEAR(slowest / speed, 1, 1e-3);
+    EXPECT_NEAR(fastest / speed, 1, 1e-3);
+    EXPECT_LT(worstVertical, 1e-3);
+}
+
+TEST(MeshContact, BallRollsDownHeightFieldSlopeAtFiveSeventhsGSinTheta) {
+    const Real theta = 15 * std::numbers::pi / 180, r = 0.3;
+    HeightFieldData grid;
+    grid.columns = 81;
+    grid.rows = 11;
+    grid.spacingX = 0.5;
+    grid.spacingY = 0.5;
+    for (std::uint32_t j = 0; j < grid.rows; ++j)
+        for (std::uint32_t i = 0; i < grid.columns; ++i)
+            grid.heights.push_back(-std::tan(theta) * i * grid.spacingX);
+    World world;
+    const BodyId ground = world.createBody(BodyDef{.type = BodyType::Static});
+    ShapeDef field{.geometry = HeightField::fromData(grid)};
+    field.material.friction = 0.8;
+    world.createShape(ground, field);
+    const Vec3 normal(std::sin(theta), 0, std::cos(theta));
+    const Vec3 downhill(std::cos(theta), 0, -std::sin(theta));
+    BodyDef def;
+    const Vec3 onSurface(2.0, 2.5, -std::tan(theta) * 2.0);
+    def.position = onSurface + r * normal;
+    const BodyId ball = world.createBody(def);
+    ShapeDef shape{.geometry = Sphere{r}};
+    shape.material.friction = 0.8;
+    world.createShape(ball, shape);
+
+    const int steps = 120;
+    for (int step = 0; step < steps; ++step)
+        ASSERT_TRUE(world.step().ok());
+    const Real h = world.settings().timeStep;
+    const Real measured = world.linearVelocity(ball).dot(downhill) / (steps * h);
+    const Real expected = 5.0 / 7.0 * kGravity * std::sin(theta);
+    std::printf("ball on height field: a / (5/7 g sin) = %.5f, off-slope speed %.3g m/s\n",
+                measured / expected, std::abs(world.linearVelocity(ball).dot(normal)));
+    EXPECT_NEAR(measured / expected, 1, 0.01);
+    EXPECT_LT(std::abs(world.linearVelocity(ball).dot(normal)), 1e-3) << "stays on the surface";
+}
+
+TEST(MeshContact, DynamicBodiesRefuseMeshesAndHeightFieldsKinematicOnesTakeThem) {
+    World world;
+    const Shape mesh = TriangleMesh::fromData(flatGrid(2, 1));
+    const BodyId dynamic = world.createBody(BodyDef{});
+    EXPECT_THROW(world.createShape(dynamic, ShapeDef{.geometry = mesh}), InvalidArgument);
+    const BodyId kinematic = world.createBody(BodyDef{.type = BodyType::Kinematic});
+    const ShapeId shape = world.createShape(kinematic, ShapeDef{.geometry = mesh});
+    EXPECT_TRUE(world.isValid(shape));
+    EXPECT_THROW(world.setBodyType(kinematic, BodyType::Dynamic), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace tumble
