@@ -10,9 +10,11 @@
 #include <set>
 
 #include "ccd_adapter.h"
+#include "mesh_queries.h"
 #include "mesh_triangles.h"
 #include "tumble/collision/mesh_shape.h"
 #include "tumble/collision/narrowphase.h"
+#include "tumble/collision/raycast.h"
 #include "tumble/core/error.h"
 
 namespace tumble {
@@ -254,6 +256,87 @@ TEST(MeshNarrowphase, EveryConvexShapeOnAFlatHeightFieldMatchesTheHalfSpace) {
     grid.heights.assign(std::size_t{41} * 31, 0.0);
     expectSameAsSolid(HeightField::fromData(grid), HalfSpace{}, tilted(), Vec3(4, 3.75, 0), 3.0,
                       "flat height field vs half-space");
+}
+
+TEST(MeshQueries, RaysAndClosestPointsOnABoxMeshMatchTheBox) {
+    const Vec3 e(1.5, 1, 0.5);
+    const Shape surface = TriangleMesh::fromData(boxMesh(e));
+    const Shape solid = Box{e};
+    const Transform pose = tilted();
+    std::mt19937 rng(2626);
+    std::uniform_real_distribution<Real> unit(-1, 1);
+    int hits = 0;
+    Real worstFraction = 0, worstNormal = 0, worstClosest = 0;
+    for (int trial = 0; trial < 2000; ++trial) {
+        // From a point outside towards a point in or near the box.
+        const Vec3 from = pose.apply(Vec3(unit(rng), unit(rng), unit(rng)).normalized() * 4);
+        const Vec3 to = pose.apply(Vec3(2 * unit(rng), 1.4 * unit(rng), 0.8 * unit(rng)));
+        const Ray ray{from, to - from, 2};
+        const auto onSurface = raycast(surface, pose, ray);
+        const auto onSolid = raycast(solid, pose, ray);
+        ASSERT_EQ(onSurface.has_value(), onSolid.has_value()) << "trial " << trial;
+        worstClosest =
+            std::max(worstClosest,
+                     (closestPoint(surface, pose, from) - closestPoint(solid, pose, from)).norm());
+        if (!onSolid)
+            continue;
+        ++hits;
+        worstFraction = std::max(worstFraction, std::abs(onSurface->fraction - onSolid->fraction));
+        // On an edge either face's normal is right; away from edges they must agree.
+        const Vec3 local = pose.applyInverse(onSolid->point).cwiseAbs();
+        const int nearEdges = ((e - local).array() < 1e-6).count();
+        if (nearEdges < 2)
+            worstNormal = std::max(worstNormal, (onSurface->normal - onSolid->normal).norm());
+    }
+    std::printf(
+        "rays on a box mesh: %d hits, worst fraction difference %.3g, normal %.3g, closest "
+        "point %.3g m\n",
+        hits, worstFraction, worstNormal, worstClosest);
+    EXPECT_GE(hits, 500);
+    EXPECT_LT(worstFraction, 1e-12);
+    EXPECT_LT(worstNormal, 1e-12);
+    EXPECT_LT(worstClosest, 1e-12);
+}
+
+TEST(MeshQueries, RaysOnAHeightFieldHitItsTrianglesAndPassThroughHoles) {
+    HeightFieldData grid;
+    grid.columns = 5;
+    grid.rows = 4;
+    grid.spacingX = 1;
+    grid.spacingY = 2;
+    for (std::uint32_t j = 0; j < grid.rows; ++j)
+        for (std::uint32_t i = 0; i < grid.columns; ++i)
+            grid.heights.push_back(0.1 * i + 0.05 * j * j);
+    grid.holes.assign(4 * 3, 0);
+    grid.holes[1 * 4 + 2] = 1;  // cell (2, 1)
+    const Shape field = HeightField::fromData(grid);
+    const HeightFieldGeometry& g = *std::get<HeightField>(field).data;
+    const Transform pose{Vec3(-1, 2, 0.3), Quat(Eigen::AngleAxis<Real>(0.2, Vec3::UnitX()))};
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<Real> u(0, 1);
+    int hits = 0, holes = 0;
+    for (int trial = 0; trial < 500; ++trial) {
+        const Vec3 local(4 * u(rng), 6 * u(rng), 0);
+        const auto i = static_cast<std::uint32_t>(local.x()),
+                   j = static_cast<std::uint32_t>(local.y() / 2);
+        // Straight down along the field's -z from above: the hit's height is the triangle's.
+        const Ray ray{pose.apply(Vec3(local.x(), local.y(), 5)), pose.rotation * Vec3(0, 0, -10),
+                      1};
+        const auto hit = raycast(field, pose, ray);
+        if (grid.holes[j * 4 + i] != 0) {
+            ++holes;
+            EXPECT_FALSE(hit.has_value()) << "through the hole";
+            continue;
+        }
+        ASSERT_TRUE(hit.has_value());
+        ++hits;
+        const Vec3 point = pose.applyInverse(hit->point);
+        const Vec3 nearest = detail::closestOnSurface(g, point);
+        EXPECT_LT((nearest - point).norm(), 1e-12) << "on the surface";
+        EXPECT_GT((pose.rotation.conjugate() * hit->normal).z(), 0.9) << "faces the ray";
+    }
+    EXPECT_GT(holes, 10);
+    EXPECT_GT(hits, 400);
 }
 
 }  // namespace
