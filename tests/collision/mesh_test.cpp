@@ -339,5 +339,31 @@ TEST(MeshQueries, RaysOnAHeightFieldHitItsTrianglesAndPassThroughHoles) {
     EXPECT_GT(hits, 400);
 }
 
+TEST(MeshNarrowphase, BoxRestingOnMeshKeepsItsFeatureIdsUnderJitter) {
+    const Shape surface = TriangleMesh::fromData(flatGrid(8, 0.25));
+    const Shape box = Box{Vec3(0.3, 0.2, 0.1)};
+    const Transform rest{Vec3(0.1, -0.05, 0.1 - 1e-3),
+                         Quat(Eigen::AngleAxis<Real>(0.3, Vec3::UnitZ()))};
+    Manifold first;
+    collide(box, rest, surface, Transform{}, 0.01, first);
+    ASSERT_EQ(first.pointCount, 4);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<Real> unit(-1, 1);
+    for (int trial = 0; trial < 100; ++trial) {
+        Transform jittered = rest;
+        jittered.position += 1e-7 * Vec3(unit(rng), unit(rng), unit(rng));
+        Manifold again;
+        collide(box, jittered, surface, Transform{}, 0.01, again);
+        ASSERT_EQ(again.pointCount, 4);
+        std::set<std::uint32_t> a, b;
+        for (int k = 0; k < 4; ++k) {
+            a.insert(first.points[static_cast<std::size_t>(k)].featureId);
+            b.insert(again.points[static_cast<std::size_t>(k)].featureId);
+        }
+        EXPECT_EQ(a, b) << "trial " << trial;
+        EXPECT_NEAR(deepest(again), -1e-3, 2e-7);
+    }
+}
+
 }  // namespace
 }  // namespace tumble

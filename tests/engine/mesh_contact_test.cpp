@@ -8,7 +8,11 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <random>
+#include <set>
+#include <vector>
 
+#include "mesh_triangles.h"
 #include "tumble/collision/mesh_shape.h"
 #include "tumble/core/error.h"
 #include "tumble/world.h"
@@ -35,19 +39,20 @@ TriangleMeshData flatGrid(int n, Real cell) {
     return data;
 }
 
-BodyId flatMeshGround(World& world, Real friction) {
-    const BodyId ground = world.createBody(BodyDef{.type = BodyType::Static});
-    ShapeDef def{.geometry = TriangleMesh::fromData(flatGrid(40, 0.25))};
-    def.material.friction = friction;
-    world.createShape(ground, def);
-    return ground;
-}
+struct Slide {
+    Real travelled = 0;      ///< (m)
+    Real worstVertical = 0;  ///< (m/s)
+    Real finalSpeed = 0;     ///< (m/s)
+};
 
-TEST(MeshContact, BoxSlidingAcrossFlatMeshStopsAtCoulombDistanceWithoutBumps) {
-    const Real mu = 0.5, speed = 5, half = 0.2;
+/// A box launched at `speed` along a direction that crosses the cells' sides and diagonals.
+Slide slideOn(const Shape& ground, Real mu, Real speed) {
+    const Real half = 0.2;
     World world;
-    flatMeshGround(world, mu);
-    // Launched along a direction that crosses the cells' sides and diagonals.
+    const BodyId base = world.createBody(BodyDef{.type = BodyType::Static});
+    ShapeDef groundDef{.geometry = ground};
+    groundDef.material.friction = mu;
+    world.createShape(base, groundDef);
     const Vec3 direction = Vec3(1, 0.3, 0).normalized();
     BodyDef def;
     def.position = Vec3(-3, -1, half) - 1.2 * direction;
@@ -56,26 +61,40 @@ TEST(MeshContact, BoxSlidingAcrossFlatMeshStopsAtCoulombDistanceWithoutBumps) {
     ShapeDef shape{.geometry = Box{Vec3::Constant(half)}};
     shape.material.friction = mu;
     world.createShape(box, shape);
-
-    Real worstVertical = 0;
+    Slide slide;
     for (int step = 0; step < 240; ++step) {
-        ASSERT_TRUE(world.step().ok());
-        worstVertical = std::max(worstVertical, std::abs(world.linearVelocity(box).z()));
+        if (!world.step().ok())
+            return slide;
+        slide.worstVertical =
+            std::max(slide.worstVertical, std::abs(world.linearVelocity(box).z()));
     }
-    const Real travelled = (world.centerOfMass(box) - def.position).head<2>().norm();
+    slide.travelled = (world.centerOfMass(box) - def.position).head<2>().norm();
+    slide.finalSpeed = world.linearVelocity(box).norm();
+    return slide;
+}
+
+TEST(MeshContact, BoxSlidingAcrossFlatMeshStopsAtCoulombDistanceWithoutBumps) {
+    const Real mu = 0.5, speed = 5;
+    const Slide mesh = slideOn(TriangleMesh::fromData(flatGrid(40, 0.25)), mu, speed);
+    const Slide plane = slideOn(HalfSpace{}, mu, speed);
     const Real expected = speed * speed / (2 * mu * kGravity);
     std::printf(
-        "box on mesh: stopped after %.4f m (Coulomb %.4f m, ratio %.5f), worst |vz| %.3g m/s\n",
-        travelled, expected, travelled / expected, worstVertical);
-    EXPECT_LT(world.linearVelocity(box).norm(), 1e-3) << "at rest";
-    EXPECT_NEAR(travelled / expected, 1, 0.02);
-    EXPECT_LT(worstVertical, 1e-3);
+        "box on mesh: stopped after %.5f m (Coulomb %.5f m, ratio %.5f; on a half-space "
+        "%.5f m), worst |vz| %.3g m/s\n",
+        mesh.travelled, expected, mesh.travelled / expected, plane.travelled, mesh.worstVertical);
+    EXPECT_LT(mesh.finalSpeed, 1e-3) << "at rest";
+    EXPECT_NEAR(mesh.travelled / expected, 1, 0.02);
+    EXPECT_NEAR(mesh.travelled / plane.travelled, 1, 1e-3) << "the mesh slides like the plane";
+    EXPECT_LT(mesh.worstVertical, 1e-3);
 }
 
 TEST(MeshContact, BallRollsAcrossFlatMeshAtConstantSpeed) {
     const Real r = 0.15, speed = 2;
     World world;
-    flatMeshGround(world, 0.6);
+    const BodyId ground = world.createBody(BodyDef{.type = BodyType::Static});
+    ShapeDef groundDef{.geometry = TriangleMesh::fromData(flatGrid(40, 0.25))};
+    groundDef.material.friction = 0.6;
+    world.createShape(ground, groundDef);
     const Vec3 direction = Vec3(1, 0.3, 0).normalized();
     BodyDef def;
     def.position = Vec3(-3, -1, r);
@@ -147,6 +166,58 @@ TEST(MeshContact, DynamicBodiesRefuseMeshesAndHeightFieldsKinematicOnesTakeThem)
     const ShapeId shape = world.createShape(kinematic, ShapeDef{.geometry = mesh});
     EXPECT_TRUE(world.isValid(shape));
     EXPECT_THROW(world.setBodyType(kinematic, BodyType::Dynamic), InvalidArgument);
+}
+
+/// Every shape's candidates from the hierarchy against all triangles, for its current box.
+void expectBvhMatchesBruteForce(const World& world, const std::vector<ShapeId>& shapes,
+                                const MeshGeometry& mesh, int step) {
+    for (const ShapeId id : shapes) {
+        const Aabb box = boundsOf(world.shapeDef(id).geometry, world.shapeTransform(id));
+        std::set<std::uint32_t> walked, brute;
+        detail::forEachTriangle(mesh, box, [&](const MeshTriangle& t) { walked.insert(t.index); });
+        for (std::uint32_t k = 0; k < mesh.triangles.size(); ++k) {
+            const MeshTriangle t = detail::meshTriangle(mesh, k);
+            const Aabb tb{t.vertices[0].cwiseMin(t.vertices[1]).cwiseMin(t.vertices[2]),
+                          t.vertices[0].cwiseMax(t.vertices[1]).cwiseMax(t.vertices[2])};
+            if (tb.overlaps(box))
+                brute.insert(k);
+        }
+        ASSERT_EQ(walked, brute) << "step " << step;
+    }
+}
+
+TEST(MeshContact, PileOnARoughMeshStaysOnItAndItsCandidatesMatchBruteForce) {
+    // A 6 m square of 24 x 24 cells with random heights up to 0.1 m (1,152 triangles).
+    TriangleMeshData data = flatGrid(24, 0.25);
+    std::mt19937 rng(26);
+    std::uniform_real_distribution<Real> unit(0, 1);
+    for (Vec3& v : data.vertices)
+        v.z() = 0.1 * unit(rng);
+    World world;
+    const BodyId ground = world.createBody(BodyDef{.type = BodyType::Static});
+    const TriangleMesh mesh = TriangleMesh::fromData(data);
+    world.createShape(ground, ShapeDef{.geometry = mesh});
+    std::vector<ShapeId> shapes;
+    std::vector<BodyId> bodies;
+    for (int k = 0; k < 40; ++k) {
+        BodyDef def;
+        def.position = Vec3(3 * unit(rng) - 1.5, 3 * unit(rng) - 1.5, 0.5 + 0.4 * k);
+        def.orientation = Quat(unit(rng), unit(rng), unit(rng), unit(rng)).normalized();
+        bodies.push_back(world.createBody(def));
+        const Shape kinds[] = {Sphere{0.15}, Capsule{0.1, 0.15}, Box{Vec3(0.2, 0.15, 0.1)},
+                               Cylinder{0.15, 0.1}};
+        shapes.push_back(world.createShape(bodies.back(), ShapeDef{.geometry = kinds[k % 4]}));
+    }
+    for (int step = 0; step < 240; ++step) {
+        ASSERT_TRUE(world.step().ok());
+        expectBvhMatchesBruteForce(world, shapes, *mesh.data, step);
+    }
+    Real lowest = INFINITY;
+    for (const BodyId body : bodies)
+        lowest = std::min(lowest, world.centerOfMass(body).z());
+    std::printf("pile on a rough mesh: lowest centre of mass at %.4f m (surface 0 .. 0.1 m)\n",
+                lowest);
+    EXPECT_GT(lowest, 0.0) << "a body fell through the mesh";
 }
 
 }  // namespace
