@@ -10,8 +10,8 @@
 #include <set>
 
 #include "ccd_adapter.h"
+#include "collision/mesh_fixtures.h"
 #include "mesh_queries.h"
-#include "mesh_triangles.h"
 #include "tumble/collision/mesh_shape.h"
 #include "tumble/collision/narrowphase.h"
 #include "tumble/collision/raycast.h"
@@ -20,23 +20,7 @@
 namespace tumble {
 namespace {
 
-/// A flat square of n x n cells of side `cell`, centred on the origin at height z, two triangles
-/// per cell (2 n^2 triangles), normals +z.
-TriangleMeshData flatGrid(int n, Real cell, Real z = 0) {
-    TriangleMeshData data;
-    const Real half = n * cell / 2;
-    for (int j = 0; j <= n; ++j)
-        for (int i = 0; i <= n; ++i)
-            data.vertices.emplace_back(i * cell - half, j * cell - half, z);
-    const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(j * (n + 1) + i); };
-    for (int j = 0; j < n; ++j) {
-        for (int i = 0; i < n; ++i) {
-            data.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-            data.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-        }
-    }
-    return data;
-}
+using testing::flatGrid;
 
 /// The 12 triangles of a box's surface, outward normals.
 TriangleMeshData boxMesh(const Vec3& e) {
@@ -143,16 +127,8 @@ TEST(TriangleMesh, HierarchyCandidatesEqualBruteForceForRandomBoxes) {
         const Vec3 centre(7 * unit(rng), 7 * unit(rng), 2 * unit(rng));
         const Vec3 half = Vec3(unit(rng), unit(rng), unit(rng)).cwiseAbs() * 1.5;
         const Aabb box{centre - half, centre + half};
-        std::set<std::uint32_t> walked, brute;
-        detail::forEachTriangle(g, box, [&](const MeshTriangle& t) { walked.insert(t.index); });
-        for (std::uint32_t k = 0; k < g.triangles.size(); ++k) {
-            const MeshTriangle t = detail::meshTriangle(g, k);
-            const Aabb tb{t.vertices[0].cwiseMin(t.vertices[1]).cwiseMin(t.vertices[2]),
-                          t.vertices[0].cwiseMax(t.vertices[1]).cwiseMax(t.vertices[2])};
-            if (tb.overlaps(box))
-                brute.insert(k);
-        }
-        ASSERT_EQ(walked, brute) << "trial " << trial;
+        const testing::Candidates c = testing::candidatesFor(g, box);
+        ASSERT_EQ(c.walked, c.brute) << "trial " << trial;
     }
 }
 
