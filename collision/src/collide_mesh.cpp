@@ -38,6 +38,9 @@ namespace {
 /// Depth of the prism behind each triangle (m): enough for well-defined side faces and edge
 /// directions, too thin to be felt.
 constexpr Real kPrismThickness = 1e-6;
+/// A shape counts as behind a triangle when its origin lies behind the plane by more than this
+/// fraction of its bounding radius.
+constexpr Real kBackReach = 0.5;
 /// Vertices within this (m) of the farthest one along a direction belong to the same feature.
 constexpr Real kFeatureTolerance = 1e-9;
 /// Points of triangles whose normal makes more than acos(kMergeCos) (about 18 degrees) with the
@@ -131,13 +134,20 @@ bool overTriangle(const MeshTriangle& t, const Vec3& p) {
     return true;
 }
 
-/// Redoes a contact on an internal feature along the face normal (see the file comment), on the
-/// side of the triangle where the shape's origin lies: a sideways normal's tilt says nothing of
-/// the side.
-void alongFace(const Shape& shape, const Transform& pose, const MeshTriangle& t, Real margin,
-               Manifold& m) {
-    const bool above = t.normal.dot(pose.position - t.vertices[0]) >= 0;
-    const Vec3 normal = above ? Vec3(-t.normal) : t.normal;  // from the shape into the triangle
+/// The face normal pointing from the shape into the triangle. The shape is in front unless its
+/// origin lies behind the plane by more than `backReach`: a shape pressed into a surface past its
+/// centre (a fast capsule into terrain) is still pushed out of the front, while one touching a
+/// thin wall from behind is pushed back out behind. A sideways contact normal's tilt says
+/// nothing of the side.
+Vec3 intoTriangle(const Transform& pose, const MeshTriangle& t, Real backReach) {
+    const bool front = t.normal.dot(pose.position - t.vertices[0]) >= -backReach;
+    return front ? Vec3(-t.normal) : t.normal;
+}
+
+/// Redoes a contact along the face normal `normal` (from the shape into the triangle; see the
+/// file comment).
+void alongFace(const Shape& shape, const Transform& pose, const MeshTriangle& t, const Vec3& normal,
+               Real margin, Manifold& m) {
     const Shape plane = HalfSpace{-normal, -normal.dot(t.vertices[0])};
     Manifold below;
     collideConvexHalfSpace(shape, pose, plane, Transform{}, margin, below);
@@ -237,21 +247,24 @@ void collideConvexMesh(const Shape& a, const Transform& poseA, const Shape& b,
     const Transform pose{poseB.applyInverse(poseA.position),
                          (poseB.rotation.conjugate() * poseA.rotation).normalized()};
     const Aabb box = boundsOf(a, pose).fattened(margin);
+    const Real backReach = kBackReach * boundingRadius(a);
     Scratch& s = scratch();
     s.manifolds.clear();
     forEachTriangle(b, box, [&](const MeshTriangle& t) {
         TriangleManifold tm{{}, t.index};
         collideConvex(a, pose, s.prism.shape(t), Transform{}, margin, tm.manifold);
+        const Vec3 normal = intoTriangle(pose, t, backReach);
         if (tm.manifold.pointCount > 0) {
             const std::uint8_t edges = featureEdges(t, -tm.manifold.normal);
             if (edges != 0 && (edges & t.activeEdges) != 0) {
                 s.manifolds.push_back(tm);  // an active edge or vertex: its own normal
                 return;
             }
-            if (edges == 0)
-                s.manifolds.push_back(tm);  // on the face: clipped points reach its edges
+            // On the face from the shape's side: clipped points reach the triangle's edges.
+            if (edges == 0 && tm.manifold.normal.dot(normal) > 0)
+                s.manifolds.push_back(tm);
         }
-        alongFace(a, pose, t, margin, tm.manifold);
+        alongFace(a, pose, t, normal, margin, tm.manifold);
         if (tm.manifold.pointCount > 0)
             s.manifolds.push_back(tm);
     });
