@@ -10,9 +10,11 @@
 #include <numbers>
 #include <random>
 #include <set>
+#include <string>
 #include <vector>
 
 #include "collision/mesh_fixtures.h"
+#include "tumble/checkpoint.h"
 #include "tumble/collision/mesh_shape.h"
 #include "tumble/core/error.h"
 #include "tumble/world.h"
@@ -215,6 +217,24 @@ TEST(MeshContact, PileOnARoughMeshStaysOnIt) {
         "m)\n",
         lowest);
     EXPECT_GT(lowest, 0.0) << "a body fell through the mesh";
+}
+
+TEST(MeshContact, CheckpointsRefuseMeshesAndHeightFieldsWithAMessage) {
+    HeightFieldData grid;
+    grid.columns = grid.rows = 2;
+    grid.heights.assign(4, 0.0);
+    for (const Shape& surface :
+         {Shape(TriangleMesh::fromData(flatGrid(2, 1))), Shape(HeightField::fromData(grid))}) {
+        World world;
+        const BodyId ground = world.createBody(BodyDef{.type = BodyType::Static});
+        world.createShape(ground, ShapeDef{.geometry = surface});
+        try {
+            checkpointBytes(world);
+            ADD_FAILURE() << "a mesh was saved";
+        } catch (const InvalidArgument& e) {
+            EXPECT_NE(std::string(e.what()).find("do not save yet"), std::string::npos) << e.what();
+        }
+    }
 }
 
 }  // namespace
