@@ -20,11 +20,14 @@ def quat(w, x, y, z):
     return b"".join(lin(c, -1, 1) for c in (w, x, y, z))
 
 
-def shape(kind, sizes, q=(1, 0, 0, 0), hull=None):
-    """kind: 0 sphere, 1 capsule, 2 box, 3 cylinder, 4 hull (points in units of sizes), 5 half-space."""
+def shape(kind, sizes, q=(1, 0, 0, 0), hull=None, heights=None, bits=0):
+    """kind: 0 sphere, 1 capsule, 2 box, 3 cylinder, 4 hull (points in units of sizes), 5 half-space,
+    6 triangle mesh, 7 height field (9 heights in units of size 3, diagonal or hole bits)."""
     b = bytes([kind]) + b"".join(logu(s) for s in sizes)
     if kind == 4:
         b += bytes([len(hull) - 4]) + b"".join(lin(c, -1, 1) for p in hull for c in p)
+    if kind in (6, 7):
+        b += b"".join(lin(h, -1, 1) for h in heights) + bytes([bits])
     return b + quat(*q)
 
 
@@ -50,3 +53,7 @@ pair("capsule_cylinder", 0.05, shape(1, [0.2, 0.5, 1]), shape(3, [0.3, 0.4, 1], 
 pair("hull_on_box", 0.02, shape(4, [0.5] * 3, hull=cube), shape(2, [0.4] * 3), (0, 0, 0), (0, 0, 0.3))
 pair("tetra_cylinder", 0.02, shape(4, [0.3] * 3, hull=tetra), shape(3, [0.2, 0.5, 1]), (-5, 5, 1), (0.1, 0.1, 0.1))
 pair("mm_cube_on_ground", 0.02, shape(5, [1, 1, 1]), shape(2, [0.001] * 3), (1e3, -1e3, 0), (0, 0, 0.0002))
+pair("box_on_mesh", 0.02, shape(6, [1, 1, 0.1], heights=[0, 0.5, 0, 0.5, 1, 0.5, 0, 0.5, 0], bits=5),
+     shape(2, [0.3] * 3), (0, 0, 0), (0.3, 0.3, 0.1))
+pair("capsule_on_height_field", 0.02, shape(7, [1, 1, 0.2], heights=[0, 1, 0, -1, 0, 1, 0, -1, 0], bits=2),
+     shape(1, [0.2, 0.4, 1], (s, s, 0, 0)), (3, 4, 5), (0.25, 0.25, 0.1))

@@ -7,9 +7,13 @@
 // mapped linearly onto its range unless said otherwise:
 //   margin in [0, 0.1] m
 //   shape A, shape B, each:
-//     kind (1 byte, mod 6: sphere, capsule, box, cylinder, convex hull, half-space)
+//     kind (1 byte, mod 8: sphere, capsule, box, cylinder, convex hull, half-space, triangle mesh,
+//       height field)
 //     three sizes, each log-uniform in [1e-3, 10] m (radius, half length / half extents)
 //     hull only: point count (1 byte, 4 + n mod 9) and points, each coordinate in [-1, 1] x size
+//     mesh and height field only: 3 x 3 sample heights, each in [-1, 1] x size 3, over a grid of
+//       spacing size 1 by size 2; a mesh folds each cell along a diagonal picked by one byte's
+//       bits, a height field takes one byte whose low 4 bits mark holes in its 2 x 2 cells
 //     orientation: four components in [-1, 1], normalised (identity when the norm is < 1e-3)
 //   position of A: each coordinate in [-1e3, 1e3] m
 //   offset of B from A: each coordinate in [-1.5, 1.5] x (extent A + extent B), where the
@@ -23,6 +27,7 @@
 #include <cstdlib>
 #include <vector>
 
+#include "tumble/collision/mesh_data.h"
 #include "tumble/collision/narrowphase.h"
 #include "tumble/core/error.h"
 
@@ -63,9 +68,42 @@ Quat readOrientation(Reader& in) {
     return Quat(q[0], q[1], q[2], q[3]);
 }
 
+/// A 3 x 3 grid of samples as a triangle mesh (`mesh`) or a height field; see the file comment.
+Shape readSurface(Reader& in, bool mesh, const Real* s) {
+    HeightFieldData grid;
+    grid.columns = grid.rows = 3;
+    grid.spacingX = s[0];
+    grid.spacingY = s[1];
+    for (int k = 0; k < 9; ++k)
+        grid.heights.push_back(in.linear(-1, 1) * s[2]);
+    const std::uint8_t bits = in.byte();
+    if (!mesh) {
+        for (int k = 0; k < 4; ++k)
+            grid.holes.push_back((bits >> k) & 1);
+        return HeightField::fromData(grid);
+    }
+    TriangleMeshData data;
+    for (std::uint32_t j = 0; j < 3; ++j)
+        for (std::uint32_t i = 0; i < 3; ++i)
+            data.vertices.emplace_back(i * s[0], j * s[1], grid.heights[j * 3 + i]);
+    for (std::uint32_t j = 0; j < 2; ++j) {
+        for (std::uint32_t i = 0; i < 2; ++i) {
+            const std::uint32_t a = j * 3 + i, b = a + 1, c = a + 4, d = a + 3;
+            if ((bits >> (j * 2 + i)) & 1) {
+                data.triangles.push_back({a, b, c});
+                data.triangles.push_back({a, c, d});
+            } else {
+                data.triangles.push_back({a, b, d});
+                data.triangles.push_back({b, c, d});
+            }
+        }
+    }
+    return TriangleMesh::fromData(data);
+}
+
 /// Returns false when the bytes describe a hull that Qhull refuses (flat, too few points).
 bool readShape(Reader& in, Posed& out) {
-    const int kind = in.byte() % 6;
+    const int kind = in.byte() % 8;
     Real s[3];
     for (Real& x : s)
         x = in.logUniform(1e-3, 10);
@@ -99,9 +137,13 @@ bool readShape(Reader& in, Posed& out) {
             out.extent = Vec3(s[0], s[1], s[2]).norm();
             break;
         }
-        default:
+        case 5:
             out.shape = HalfSpace{};  // the normal is set by the orientation
             out.extent = 1;
+            break;
+        default:
+            out.shape = readSurface(in, kind == 6, s);
+            out.extent = 2 * Vec3(s[0], s[1], s[2]).norm();
             break;
     }
     out.orientation = readOrientation(in);

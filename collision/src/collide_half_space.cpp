@@ -152,8 +152,10 @@ void collideConvexHalfSpace(const Shape& a, const Transform& poseA, const Shape&
             addHull(*std::get<ConvexHull>(a).data, poseA, margin, candidates);
             break;
         case ShapeType::HalfSpace:
+        case ShapeType::TriangleMesh:
+        case ShapeType::HeightField:
         case ShapeType::Count:
-            return;  // no contact between half-spaces
+            return;  // no contact between static geometry
     }
     candidates.finish(out);
 }

@@ -136,6 +136,16 @@ struct MassOfShape {
     MassProperties operator()(const HalfSpace&) const {
         fail("massOf: a HalfSpace is unbounded and has no finite mass; put it on a static body");
     }
+    MassProperties operator()(const TriangleMesh&) const {
+        fail(
+            "massOf: a TriangleMesh is a surface with no mass; put it on a static or kinematic "
+            "body");
+    }
+    MassProperties operator()(const HeightField&) const {
+        fail(
+            "massOf: a HeightField is a surface with no mass; put it on a static or kinematic "
+            "body");
+    }
 };
 
 }  // namespace

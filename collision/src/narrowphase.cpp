@@ -16,7 +16,8 @@ using detail::CollideFn;
 
 constexpr std::size_t kTypeCount = static_cast<std::size_t>(ShapeType::Count);
 
-/// [typeA][typeB] for typeA <= typeB; nullptr = no contact (half-space against half-space).
+/// [typeA][typeB] for typeA <= typeB; nullptr = no contact (between half-spaces, meshes and
+/// height fields).
 /// Pairs without a closed form go through libccd and clipping (detail::collideConvex).
 constexpr std::array<std::array<CollideFn, kTypeCount>, kTypeCount> makeTable() {
     using enum ShapeType;
@@ -32,9 +33,16 @@ constexpr std::array<std::array<CollideFn, kTypeCount>, kTypeCount> makeTable() 
     set(Sphere, Box, &detail::collideSphereBox);
     set(Capsule, Capsule, &detail::collideCapsules);
     set(Box, Box, &detail::collideBoxes);
-    for (ShapeType convex : {Sphere, Capsule, Box, Cylinder, ConvexHull})
+    for (ShapeType convex : {Sphere, Capsule, Box, Cylinder, ConvexHull}) {
         set(convex, HalfSpace, &detail::collideConvexHalfSpace);
-    set(HalfSpace, HalfSpace, nullptr);
+        set(convex, TriangleMesh, &detail::collideConvexMesh);
+        set(convex, HeightField, &detail::collideConvexMesh);
+    }
+    // Static geometry never meets static geometry.
+    for (ShapeType a : {HalfSpace, TriangleMesh, HeightField})
+        for (ShapeType b : {HalfSpace, TriangleMesh, HeightField})
+            if (a <= b)
+                set(a, b, nullptr);
     return table;
 }
 

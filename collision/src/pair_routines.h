@@ -25,6 +25,10 @@ void collideBoxes(const Shape&, const Transform&, const Shape&, const Transform&
 void collideConvexHalfSpace(const Shape&, const Transform&, const Shape&, const Transform&, Real,
                             Manifold&);
 
+/// Any convex shape (A) against a triangle mesh or height field (B) (collide_mesh.cpp).
+void collideConvexMesh(const Shape&, const Transform&, const Shape&, const Transform&, Real,
+                       Manifold&);
+
 // General convex pairs through libccd, then clipping (collide_convex.cpp).
 void collideConvex(const Shape&, const Transform&, const Shape&, const Transform&, Real, Manifold&);
 

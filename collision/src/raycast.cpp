@@ -16,6 +16,7 @@
 #include <limits>
 #include <variant>
 
+#include "mesh_queries.h"
 #include "tumble/core/error.h"
 
 namespace tumble {
@@ -146,6 +147,9 @@ struct ClipLine {
         clipPlane(clip, o, d, halfSpace.normal, halfSpace.offset);
         return clip;
     }
+    // Surfaces of triangles are not convex solids: raycast sends them to raycastSurface.
+    LineClip operator()(const TriangleMesh&) const { return {.empty = true}; }
+    LineClip operator()(const HeightField&) const { return {.empty = true}; }
 };
 
 /// A capsule is the union of its two end spheres and the finite cylinder between them; being
@@ -211,6 +215,9 @@ struct Contains {
     bool operator()(const HalfSpace& halfSpace) const {
         return halfSpace.normal.dot(p) <= halfSpace.offset;
     }
+    // A surface encloses no volume.
+    bool operator()(const TriangleMesh&) const { return false; }
+    bool operator()(const HeightField&) const { return false; }
 };
 
 Vec3 closestOnSegment(const Vec3& a, const Vec3& b, const Vec3& p) {
@@ -315,6 +322,12 @@ struct Closest {
         const Real height = halfSpace.normal.dot(p) - halfSpace.offset;
         return height <= 0 ? p : Vec3(p - height * halfSpace.normal);
     }
+    Vec3 operator()(const TriangleMesh& mesh) const {
+        return detail::closestOnSurface(*mesh.data, p);
+    }
+    Vec3 operator()(const HeightField& field) const {
+        return detail::closestOnSurface(*field.data, p);
+    }
 };
 
 }  // namespace
@@ -338,6 +351,8 @@ std::optional<RayHit> raycast(const Shape& shape, const Transform& pose, const R
     }
     const Vec3 o = pose.applyInverse(ray.origin);
     const Vec3 d = pose.rotation.conjugate() * ray.direction;
+    if (isTriangleSurface(shape))
+        return detail::raycastSurface(shape, pose, o, d, ray);
     const LineClip clip = std::visit(ClipLine{o, d}, shape);
     if (clip.isEmpty() || clip.exit < 0 || clip.enter > ray.maxFraction)
         return std::nullopt;

@@ -6,6 +6,7 @@
 #include <limits>
 #include <variant>
 
+#include "tumble/collision/mesh_shape.h"
 #include "tumble/collision/shape.h"
 #include "tumble/core/error.h"
 
@@ -56,7 +57,21 @@ struct CheckShape {
         if (!std::isfinite(halfSpace.offset))
             fail(where, ": HalfSpace.offset = ", halfSpace.offset, " m must be finite");
     }
+    void operator()(const TriangleMesh& mesh) const {
+        if (mesh.data == nullptr)
+            fail(where, ": TriangleMesh.data is null; build the mesh with TriangleMesh::fromData");
+    }
+    void operator()(const HeightField& field) const {
+        if (field.data == nullptr)
+            fail(where, ": HeightField.data is null; build it with HeightField::fromData");
+    }
 };
+
+/// The box around a local box carried to `pose`.
+Aabb posedBox(const Aabb& local, const Transform& pose) {
+    const Transform centred{pose.apply(local.center()), pose.rotation};
+    return Aabb::ofOrientedBox(centred, (local.upper - local.lower) / 2);
+}
 
 struct BoundsOf {
     const Transform& pose;
@@ -111,6 +126,12 @@ struct BoundsOf {
         }
         return box;
     }
+    Aabb operator()(const TriangleMesh& mesh) const {
+        return posedBox(localBounds(*mesh.data), pose);
+    }
+    Aabb operator()(const HeightField& field) const {
+        return posedBox(localBounds(*field.data), pose);
+    }
 };
 
 /// +1 for x >= 0, else -1: ties resolve to the positive side, deterministically.
@@ -159,6 +180,12 @@ struct SupportOf {
             "support: a HalfSpace is unbounded and has no support point; pair it through "
             "collideConvexHalfSpace");
     }
+    Vec3 operator()(const TriangleMesh&) const {
+        fail("support: a TriangleMesh is not convex; pair it through collideConvexMesh");
+    }
+    Vec3 operator()(const HeightField&) const {
+        fail("support: a HeightField is not convex; pair it through collideConvexMesh");
+    }
 
     /// `direction` normalised; +x for a zero direction (every point is then farthest).
     Vec3 unit() const {
@@ -181,6 +208,17 @@ struct BoundingRadius {
         return largest;
     }
     Real operator()(const HalfSpace&) const { return std::numeric_limits<Real>::infinity(); }
+    Real operator()(const TriangleMesh& mesh) const {
+        return farthestCorner(localBounds(*mesh.data));
+    }
+    Real operator()(const HeightField& field) const {
+        return farthestCorner(localBounds(*field.data));
+    }
+
+    /// Bounds the surface's distance from the origin by its box's farthest corner.
+    static Real farthestCorner(const Aabb& box) {
+        return box.lower.cwiseAbs().cwiseMax(box.upper.cwiseAbs()).norm();
+    }
 };
 
 }  // namespace

@@ -144,6 +144,11 @@ void shapeDef(const ShapeDef& def, BodyType bodyType) {
     if (typeOf(def.geometry) == ShapeType::HalfSpace && bodyType != BodyType::Static) {
         fail("ShapeDef.geometry is a half-space, which only a static body may carry");
     }
+    if (isTriangleSurface(def.geometry) && bodyType == BodyType::Dynamic) {
+        fail(
+            "ShapeDef.geometry is a triangle mesh or height field, which only a static or "
+            "kinematic body may carry");
+    }
 }
 
 void timeStep(Real h, std::string_view what) {

@@ -29,6 +29,7 @@ void describeShape(const World& world, ShapeId shape, DebugDraw& draw) {
                 const Vec3 normal = pose.rotation * g.normal;
                 draw.drawPlane(normal, g.offset + normal.dot(pose.position));
             }
+            // Meshes and height fields: no triangle primitive in DebugDraw yet.
         },
         world.shapeDef(shape).geometry);
 }

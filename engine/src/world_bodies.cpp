@@ -39,6 +39,11 @@ NewMass checkTypeChange(const BodyStore& bodies, const ShapeStore& shapes, const
                 "setBodyType: the body carries a half-space shape, which only a static body "
                 "may carry");
         }
+        if (type == BodyType::Dynamic && isTriangleSurface(def.geometry)) {
+            fail(
+                "setBodyType: the body carries a triangle mesh or height field, which only a "
+                "static or kinematic body may carry");
+        }
         shapesGiveMass = shapesGiveMass || def.updateBodyMass;
     });
     if (type != BodyType::Dynamic) {

@@ -24,8 +24,8 @@ namespace {
 // is half its size or more (a 1 mm cube at the default 5 mm stays sunk on a corner). The size is
 // the smallest side of the shape's box in its own frame.
 void warnIfSmallerThanSlop(Real slop, BodyId body, const Shape& geometry, WarningLog& warnings) {
-    if (std::holds_alternative<HalfSpace>(geometry))
-        return;
+    if (std::holds_alternative<HalfSpace>(geometry) || isTriangleSurface(geometry))
+        return;  // unbounded, or a surface whose flat box says nothing of its size
     const Aabb box = boundsOf(geometry, Transform{});
     const Real size = (box.upper - box.lower).minCoeff();
     const Real limit = 2 * slop;

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "replay_format.h"
+#include "tumble/collision/mesh_shape.h"
 #include "tumble/core/error.h"
 #include "tumble/replay/replay.h"
 
@@ -52,6 +53,20 @@ Json geometryJson(const Shape& shape) {
                 j = {{"type", "cylinder"}, {"radius", g.radius}, {"halfLength", g.halfLength}};
             } else if constexpr (std::is_same_v<T, HalfSpace>) {
                 j = {{"type", "plane"}, {"normal", vec(g.normal)}, {"offset", g.offset}};
+            } else if constexpr (std::is_same_v<T, TriangleMesh>) {
+                Json vertices = Json::array(), triangles = Json::array();
+                for (const Vec3& v : g.data->vertices)
+                    vertices.push_back(vec(v));
+                for (const auto& t : g.data->triangles)
+                    triangles.push_back(Json::array({t[0], t[1], t[2]}));
+                j = {{"type", "mesh"}, {"vertices", vertices}, {"triangles", triangles}};
+            } else if constexpr (std::is_same_v<T, HeightField>) {
+                const HeightFieldData& grid = g.data->grid;
+                j = {{"type", "heightfield"},
+                     {"columns", grid.columns},
+                     {"rows", grid.rows},
+                     {"spacing", Json::array({grid.spacingX, grid.spacingY})},
+                     {"heights", grid.heights}};
             } else {
                 Json vertices = Json::array(), faces = Json::array();
                 for (const Vec3& v : g.data->vertices)

@@ -137,7 +137,8 @@ Real inside(const Shape& shape, const Transform& pose, const Vec3& x) {
     const Vec3 c = pose.position;
     const Vec3 a = axisOf(pose, 2);
     return std::visit(
-        Overloaded{[&](const Sphere& s) { return (x - c).norm() - s.radius; },
+        Overloaded{[&](const auto&) { return Real(INFINITY); },  // surfaces: not solids
+                   [&](const Sphere& s) { return (x - c).norm() - s.radius; },
                    [&](const Capsule& s) {
                        const Real along = std::clamp((x - c).dot(a), -s.halfLength, s.halfLength);
                        return (x - c - along * a).norm() - s.radius;
@@ -176,6 +177,7 @@ Real supportValue(const Shape& shape, const Transform& pose, const Vec3& u) {
     return u.dot(c) +
            std::visit(
                Overloaded{
+                   [&](const auto&) { return Real(INFINITY); },  // surfaces: not tested here
                    [&](const Sphere& s) { return s.radius; },
                    [&](const Capsule& s) { return s.halfLength * std::abs(u.dot(a)) + s.radius; },
                    [&](const Box& s) {
@@ -205,7 +207,8 @@ std::vector<Vec3> activeNormals(const Shape& shape, const Transform& pose, const
     const Vec3 c = pose.position;
     const Vec3 a = axisOf(pose, 2);
     std::vector<Vec3> normals;
-    std::visit(Overloaded{[&](const Sphere&) { normals.push_back((x - c).normalized()); },
+    std::visit(Overloaded{[&](const auto&) {},  // surfaces: not tested here
+                          [&](const Sphere&) { normals.push_back((x - c).normalized()); },
                           [&](const Capsule& s) {
                               const Real along =
                                   std::clamp((x - c).dot(a), -s.halfLength, s.halfLength);
@@ -543,6 +546,7 @@ std::vector<Vec3> surfaceSamples(const Shape& shape, const Transform& pose) {
     };
     std::visit(
         Overloaded{
+            [&](const auto&) {},  // surfaces: not tested here
             [&](const Sphere& s) { sphere(s.radius, 0, 0); },
             [&](const Capsule& s) {
                 sphere(s.radius, s.halfLength, 1);

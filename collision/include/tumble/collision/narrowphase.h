@@ -4,8 +4,9 @@
 /// Dispatch is a [ShapeType][ShapeType] table of functions. Each pair routine is written for one
 /// order (A's type <= B's type); `collide` swaps the arguments for the other order and flips the
 /// normal. Closed-form routines serve sphere-sphere, sphere-capsule, capsule-capsule, sphere-box,
-/// box-box, and every convex shape against a half-space; the rest go through libccd (GJK for
-/// separation, EPA/MPR for penetration) followed by face clipping to a full manifold.
+/// box-box, and every convex shape against a half-space; a convex shape against a triangle mesh or
+/// height field collides with each triangle under it (collide_mesh.cpp); the rest go through libccd
+/// (GJK for separation, EPA/MPR for penetration) followed by face clipping to a full manifold.
 
 #include "tumble/collision/manifold.h"
 #include "tumble/collision/shape.h"
@@ -14,7 +15,8 @@ namespace tumble {
 
 /// Writes into `out` the manifold of shape a at poseA and shape b at poseB: every contact point
 /// whose separation is at most `margin` (m, >= 0), at most 4 points; pointCount 0 when the shapes
-/// are farther apart than the margin. Half-space against half-space gives no contact.
+/// are farther apart than the margin. Half-spaces, meshes and height fields give no contact with
+/// each other.
 void collide(const Shape& a, const Transform& poseA, const Shape& b, const Transform& poseB,
              Real margin, Manifold& out);
 

@@ -1,14 +1,19 @@
 #pragma once
 /// Ray casts and point queries against one shape at a pose: the per-shape half of scene queries,
 /// called by the engine for the candidates its broadphase finds. Everything is in world
-/// coordinates; the shape's local frame sits at `pose`. Closed forms for every shape type (no
-/// iteration, no allocation), so these may run in hot paths.
+/// coordinates; the shape's local frame sits at `pose`. Closed forms for every convex shape type
+/// (no iteration, no allocation), so these may run in hot paths.
 ///
 /// Shapes are solids, closed (their surface belongs to them). A ray that starts inside a solid
 /// (or on its surface heading out) hits it at fraction 0: the reported point is the origin and the
 /// normal is -direction / |direction|. A ray starting on the surface heading in hits at fraction 0
 /// with the surface normal. A ray of zero direction is a point query: it hits at fraction 0 with a
 /// zero normal if its origin is inside, and misses otherwise.
+///
+/// Triangle meshes and height fields are surfaces, not solids, hit from either side: a ray hits
+/// the first triangle it crosses (through the mesh's hierarchy or the cells under the ray) with
+/// the face normal turned against the ray; nothing contains a point, and the closest point is the
+/// nearest point of the surface.
 
 #include <optional>
 

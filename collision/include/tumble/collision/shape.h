@@ -70,8 +70,34 @@ struct HalfSpace {
     Real offset = 0;              ///< (m)
 };
 
+struct TriangleMeshData;
+struct HeightFieldData;
+struct MeshGeometry;
+struct HeightFieldGeometry;
+
+/// A static triangle mesh (mesh_shape.h): a two-sided surface, not a solid, with a bounding volume
+/// hierarchy and per-edge "active" flags built once and shared. Static and kinematic bodies only.
+struct TriangleMesh {
+    std::shared_ptr<const MeshGeometry> data;
+
+    /// Refuses (InvalidArgument) no triangles, non-finite vertices and indices out of range;
+    /// drops degenerate triangles (counted in MeshGeometry::droppedTriangles).
+    static TriangleMesh fromData(const TriangleMeshData& data);
+};
+
+/// A regular grid of heights (mesh_shape.h), two triangles per cell made on demand, holes
+/// optional. A surface, not a solid. Static and kinematic bodies only.
+struct HeightField {
+    std::shared_ptr<const HeightFieldGeometry> data;
+
+    /// Refuses (InvalidArgument) fewer than 2 x 2 samples, non-positive spacing, non-finite
+    /// heights and a height or hole list of the wrong size.
+    static HeightField fromData(const HeightFieldData& data);
+};
+
 /// The order of the alternatives is the order of ShapeType and of the narrowphase table.
-using Shape = std::variant<Sphere, Capsule, Box, Cylinder, ConvexHull, HalfSpace>;
+using Shape =
+    std::variant<Sphere, Capsule, Box, Cylinder, ConvexHull, HalfSpace, TriangleMesh, HeightField>;
 
 enum class ShapeType : std::uint8_t {
     Sphere,
@@ -80,11 +106,19 @@ enum class ShapeType : std::uint8_t {
     Cylinder,
     ConvexHull,
     HalfSpace,
+    TriangleMesh,
+    HeightField,
     Count
 };
 
 inline ShapeType typeOf(const Shape& shape) {
     return static_cast<ShapeType>(shape.index());
+}
+
+/// Whether the shape is a triangle mesh or a height field: a massless surface of triangles that
+/// static and kinematic bodies may carry, dynamic ones not.
+inline bool isTriangleSurface(const Shape& shape) {
+    return typeOf(shape) == ShapeType::TriangleMesh || typeOf(shape) == ShapeType::HeightField;
 }
 
 /// Refuses (InvalidArgument) a shape with a non-finite, zero or negative dimension, a non-unit

@@ -1,0 +1,49 @@
+#pragma once
+// Test geometry for triangle meshes, shared by the collision and engine tests.
+
+#include <cstdint>
+#include <set>
+
+#include "mesh_triangles.h"
+#include "tumble/collision/mesh_data.h"
+#include "tumble/collision/mesh_shape.h"
+
+namespace tumble::testing {
+
+/// A flat square of n x n cells of side `cell` centred on the origin at z = 0, two triangles per
+/// cell (2 n^2 triangles), normals +z.
+inline TriangleMeshData flatGrid(int n, Real cell) {
+    TriangleMeshData data;
+    const Real half = n * cell / 2;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i)
+            data.vertices.emplace_back(i * cell - half, j * cell - half, 0);
+    const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(j * (n + 1) + i); };
+    for (int j = 0; j < n; ++j) {
+        for (int i = 0; i < n; ++i) {
+            data.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+            data.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+        }
+    }
+    return data;
+}
+
+/// The triangles the hierarchy offers for `box`, and those a test of every triangle finds.
+struct Candidates {
+    std::set<std::uint32_t> walked, brute;
+};
+
+inline Candidates candidatesFor(const MeshGeometry& mesh, const Aabb& box) {
+    Candidates c;
+    detail::forEachTriangle(mesh, box, [&](const MeshTriangle& t) { c.walked.insert(t.index); });
+    for (std::uint32_t k = 0; k < mesh.triangles.size(); ++k) {
+        const MeshTriangle t = detail::meshTriangle(mesh, k);
+        const Aabb triangleBox{t.vertices[0].cwiseMin(t.vertices[1]).cwiseMin(t.vertices[2]),
+                               t.vertices[0].cwiseMax(t.vertices[1]).cwiseMax(t.vertices[2])};
+        if (triangleBox.overlaps(box))
+            c.brute.insert(k);
+    }
+    return c;
+}
+
+}  // namespace tumble::testing
