@@ -19,6 +19,8 @@ Real cross(const Vec2& a, const Vec2& b) {
 // Sweeps of the anchor pass: a sticking manifold's drift is one step's lag, the same at its
 // points, which a few sweeps remove.
 constexpr int kSweeps = 4;
+// Relative slack on a point's Coulomb disc for the equilibrated friction (rounding).
+constexpr Real kDiscTolerance = 1e-9;
 
 // Holds the manifold's normal pseudo-velocities where the pass found them (rows[i].z()), with
 // impulses of either sign: the face's normal block answers the tangential pull's moment with a
@@ -135,11 +137,19 @@ void equilibrateFriction(ContactConstraint& c) {
         return;
     const Vec2 shift = force / load;
     const Real spin = spread > 0 ? moment / spread : 0;
+    std::array<Vec2, 4> f;
     for (int i = 0; i < n; ++i) {
-        ContactConstraintPoint& p = c.points[i];
-        const Vec2 f = p.normalImpulse * (shift + spin * Vec2(-d[i].y(), d[i].x()));
-        p.tangentImpulse = {f.x(), f.y()};
+        const Real limit = c.friction * c.points[i].normalImpulse;
+        f[i] = c.points[i].normalImpulse * (shift + spin * Vec2(-d[i].y(), d[i].x()));
+        // Kept only where every point stays within its disc: a manifold that slides or spins
+        // at its limit has nothing to carry that cancels, and a point the last normal sweep
+        // unloaded after its friction was solved (lambda_n -> 0, lambda_t not) would get a huge
+        // share of a tiny load.
+        if (!(f[i].squaredNorm() <= (1 + kDiscTolerance) * limit * limit))
+            return;
     }
+    for (int i = 0; i < n; ++i)
+        c.points[i].tangentImpulse = {f[i].x(), f[i].y()};
 }
 
 }  // namespace tumble

@@ -16,7 +16,9 @@ namespace tumble {
 /// lambda_n,i with the same net tangential impulse and moment about the normal: every point at
 /// the same share of its own disc under a pure pull, as a rigid patch slipping as a whole.
 /// The points are taken as one plane, as a manifold's are (the tipping moment of the tangential
-/// impulses is then fixed by their sum). Call after a solve, on the impulses to be carried.
+/// impulses is then fixed by their sum). Left as solved where that distribution would take a
+/// point off its disc (sliding or spinning at the limit). Call after a solve, on the impulses to
+/// be carried.
 void equilibrateFriction(ContactConstraint& c);
 
 /// Split impulse's friction anchor pass: after the relax sweeps, moves each sticking point back
