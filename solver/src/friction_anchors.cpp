@@ -4,6 +4,9 @@
 #include "tumble/solver/friction_anchors.h"
 
 #include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "normal_block.h"
 
@@ -19,8 +22,18 @@ Real cross(const Vec2& a, const Vec2& b) {
 // Sweeps of the anchor pass: a sticking manifold's drift is one step's lag, the same at its
 // points, which a few sweeps remove.
 constexpr int kSweeps = 4;
+// Share of a point's Coulomb disc beyond which a manifold's carried friction is equilibrated.
+constexpr Real kCrowdedShare = 0.5;
 // Relative slack on a point's Coulomb disc for the equilibrated friction (rounding).
 constexpr Real kDiscTolerance = 1e-9;
+
+// The share of a disc of radius `limit` that an impulse of size `size` uses (infinite where a
+// point without load carries friction).
+Real share(Real size, Real limit) {
+    if (size == 0)
+        return 0;
+    return limit > 0 ? size / limit : std::numeric_limits<Real>::infinity();
+}
 
 // Holds the manifold's normal pseudo-velocities where the pass found them (rows[i].z()), with
 // impulses of either sign: the face's normal block answers the tangential pull's moment with a
@@ -138,16 +151,21 @@ void equilibrateFriction(ContactConstraint& c) {
     const Vec2 shift = force / load;
     const Real spin = spread > 0 ? moment / spread : 0;
     std::array<Vec2, 4> f;
+    Real before = 0;  // the largest share of its disc a point uses, as solved
+    Real after = 0;   // and equilibrated
     for (int i = 0; i < n; ++i) {
-        const Real limit = c.friction * c.points[i].normalImpulse;
-        f[i] = c.points[i].normalImpulse * (shift + spin * Vec2(-d[i].y(), d[i].x()));
-        // Kept only where every point stays within its disc: a manifold that slides or spins
-        // at its limit has nothing to carry that cancels, and a point the last normal sweep
-        // unloaded after its friction was solved (lambda_n -> 0, lambda_t not) would get a huge
-        // share of a tiny load.
-        if (!(f[i].squaredNorm() <= (1 + kDiscTolerance) * limit * limit))
+        const ContactConstraintPoint& p = c.points[i];
+        const Real limit = c.friction * p.normalImpulse;
+        f[i] = p.normalImpulse * (shift + spin * Vec2(-d[i].y(), d[i].x()));
+        before =
+            std::max(before, share(std::hypot(p.tangentImpulse[0], p.tangentImpulse[1]), limit));
+        const Real next = share(f[i].norm(), limit);
+        if (!(next <= 1 + kDiscTolerance))  // off its disc, or not finite
             return;
+        after = std::max(after, next);
     }
+    if (!(before >= kCrowdedShare && after < before))
+        return;
     for (int i = 0; i < n; ++i)
         c.points[i].tangentImpulse = {f[i].x(), f[i].y()};
 }
