@@ -146,7 +146,8 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
 
     for (std::size_t j = 0; j < constraints.size(); ++j) {
         ContactConstraint& c = constraints[j];
-        equilibrateFriction(c);
+        if (anchored)  // off: soak.pile-sleeps never slept with it (see docs)
+            equilibrateFriction(c);
         if (anchored)
             anchors_.release(constraintContact_[j], c);
         Contact& contact = contacts.contact(constraintContact_[j]);
