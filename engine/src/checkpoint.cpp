@@ -41,7 +41,8 @@ template <typename Ar>
 void field(Ar& a, SolverSettings& x) {
     fields(a, x.iterations, x.relaxIterations, x.tolerance, x.relaxation, x.friction,
            x.stabilisation, x.baumgarte, x.splitImpulseFactor, x.slop, x.restitutionThreshold,
-           x.warmStart, x.springSolve, x.projectSprings, x.jointGeometricStiffness, x.jointSolve);
+           x.warmStart, x.springSolve, x.projectSprings, x.jointGeometricStiffness, x.jointSolve,
+           x.frictionAnchors);
 }
 template <typename Ar>
 void field(Ar& a, WorldDef& x) {
@@ -336,6 +337,11 @@ struct CheckpointAccess {
         fields(a, w.shapes.records);
         io(a, w.shapes.pool_);
         io(a, w.contacts);
+        AnchorTable& anchors = w.solve.anchors_;
+        sequence(a, anchors.entries_, [&](AnchorTable::Entry& e) {
+            fields(a, e.onA, e.onB, e.feature, e.count, e.solve);
+        });
+        fields(a, anchors.solve_);
         SpringStore& s = w.springs;
         fields(a, s.defs, s.state, s.previousState, s.implicitCount);
         io(a, s.pool_);

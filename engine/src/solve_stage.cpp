@@ -6,6 +6,7 @@
 #include "integrator.h"
 #include "joints.h"
 #include "springs.h"
+#include "tumble/solver/friction_anchors.h"
 
 namespace tumble {
 
@@ -135,6 +136,10 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
 
     const SolverStats stats = solver_.solve(solverBodies_, constraints, pseudo_, context.h,
                                             settings, springRows_, jointRows_);
+    const bool anchored =
+        settings.frictionAnchors && settings.stabilisation == Stabilisation::SplitImpulse;
+    if (anchored)
+        holdAnchors(bodies, contacts, constraints, context);
 
     brokenJoints_.clear();
     storeJointResults(joints, jointRows_, rowJoint_, context.h, brokenJoints_);
@@ -146,7 +151,11 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
     }
 
     for (std::size_t j = 0; j < constraints.size(); ++j) {
-        const ContactConstraint& c = constraints[j];
+        ContactConstraint& c = constraints[j];
+        if (anchored)  // off: soak.pile-sleeps never slept with it (see docs)
+            equilibrateFriction(c);
+        if (anchored)
+            anchors_.release(constraintContact_[j], c);
         Contact& contact = contacts.contact(constraintContact_[j]);
         contact.angularImpulse = c.angularImpulse;
         for (int i = 0; i < c.pointCount; ++i) {
@@ -163,6 +172,25 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
         bodies.motion[i].angularVelocity = solverBodies_[1 + k].angularVelocity;
     }
     return stats;
+}
+
+// The anchors' drifts are those of the poses the step starts from, as the constraints' points.
+void SolveStage::holdAnchors(const BodyStore& bodies, const ContactManager& contacts,
+                             std::span<const ContactConstraint> constraints,
+                             const StepContext& context) {
+    anchors_.beginSolve();
+    anchorDrifts_.assign(4 * constraints.size(), Vec3::Zero());
+    for (std::size_t j = 0; j < constraints.size(); ++j) {
+        const ContactConstraint& c = constraints[j];
+        if (c.friction == 0)
+            continue;
+        const std::uint32_t slot = constraintContact_[j];
+        const Contact& contact = contacts.contact(slot);
+        anchors_.drifts(slot, contact, bodies.motion[bodies.indexOf(contact.bodyA)],
+                        bodies.motion[bodies.indexOf(contact.bodyB)], context.h, c,
+                        &anchorDrifts_[4 * j]);
+    }
+    anchorPass_.run(solverBodies_, constraints, anchorDrifts_, pseudo_, context.inverseH);
 }
 
 void SolveStage::projectSprings(BodyStore& bodies, const SpringStore& springs,

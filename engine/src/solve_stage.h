@@ -10,6 +10,7 @@
 #include <span>
 #include <vector>
 
+#include "anchor_table.h"
 #include "body_store.h"
 #include "contact_manager.h"
 #include "joint_store.h"
@@ -18,10 +19,13 @@
 #include "step_context.h"
 #include "tumble/contact.h"
 #include "tumble/solver/constraint_solver.h"
+#include "tumble/solver/friction_anchors.h"
 
 namespace tumble {
 
 class SolveStage {
+    friend struct CheckpointAccess;  ///< checkpoint.cpp saves and restores the anchors
+
 public:
     /// Solves every active contact with points between awake (or static) bodies; velocities of
     /// the awake dynamic bodies are updated, and pseudoVelocities() holds the split-impulse
@@ -56,6 +60,9 @@ private:
     std::span<ContactConstraint> buildConstraints(const BodyStore& bodies, const ShapeStore& shapes,
                                                   const ContactManager& contacts,
                                                   const StepContext& context);
+    /// Friction anchors (split impulse): this solve's drifts and the anchor pass on pseudo_.
+    void holdAnchors(const BodyStore& bodies, const ContactManager& contacts,
+                     std::span<const ContactConstraint> constraints, const StepContext& context);
 
     ConstraintSolver solver_;
     std::vector<SolverBody> solverBodies_;
@@ -73,6 +80,9 @@ private:
     std::vector<JointRow> jointRows_;
     std::vector<std::uint32_t> rowJoint_;  ///< joint index of each row
     std::vector<std::uint32_t> brokenJoints_;
+    AnchorTable anchors_;  ///< empty unless SolverSettings::frictionAnchors
+    FrictionAnchorPass anchorPass_;
+    std::vector<Vec3> anchorDrifts_;  ///< 4 per constraint
 };
 
 /// Mixing rules for a pair of materials: friction by geometric mean (a frictionless surface

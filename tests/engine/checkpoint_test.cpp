@@ -287,6 +287,15 @@ TEST(Checkpoint, JointsWithMotorLimitsControllerAndBreakingResumeBitwise) {
     EXPECT_EQ(broken, 1);  // the last link's hinge broke after the checkpoint
 }
 
+// Friction anchors live in a side table of the solve stage: saved with the contacts, so a
+// resumed pile holds its contacts where the original does.
+TEST(Checkpoint, PileWithFrictionAnchorsResumesBitwise) {
+    WorldDef def;
+    def.solver.frictionAnchors = true;
+    Scene pile = pileScene(def);
+    expectBitwiseResume(pile, 40, 120);
+}
+
 // Substeps: the rollback and interpolation state is the step's start, the controllers' state
 // is saved once per step; a resumed world must take the substep count from the checkpoint.
 TEST(Checkpoint, PileAndJointsWithTwoSubstepsResumeBitwise) {

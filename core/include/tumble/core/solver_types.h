@@ -55,6 +55,10 @@ struct SolverSettings {
     /// Ball joints' point rows: one exact sparse block solve per sweep (buildJointBlockRows)
     /// or Gauss-Seidel with the other joint rows.
     SpringSolve jointSolve = SpringSolve::Direct;
+    /// Friction anchors (split impulse only): a sticking manifold's points are pulled back to
+    /// where they stuck, so a box on a turning platform stays on its spot instead of creeping
+    /// outward (engine/src/anchor_table.h).
+    bool frictionAnchors = false;
 };
 
 enum class JointType : std::uint8_t {

@@ -1,0 +1,91 @@
+#include "anchor_table.h"
+
+#include <cmath>
+
+namespace tumble {
+namespace {
+
+// A sticking point's anchors may stay this far (m, along the surface) behind the point before
+// they are seated afresh: a rolling body's contact point moves over both surfaces while it
+// sticks. Over that reach the anchors of a ball of radius R rolling drift R (t - sin t),
+// t = reach / R: 1.7e-5 m at R = 0.1 m.
+constexpr Real kReach = 0.01;
+// A manifold whose friction impulses add up to this share of mu sum(lambda_n) slips.
+constexpr Real kSlipShare = 0.99;
+
+Vec3 onPlane(const Vec3& v, const Vec3& n) {
+    return v - v.dot(n) * n;
+}
+
+}  // namespace
+
+// The manifold's anchors are seated together: anchors seated at different times disagree with
+// any rigid motion, and the friction rows then fought each other.
+//
+// The drift is the one expected at the end of the step: the points' paths bend with their
+// bodies' spins, which velocities sticking at the start of the step do not follow (on a turning
+// platform a point falls behind a straight line by omega^2 r h^2 / 2 per step: 0.46 mm at the
+// issue's slip speed).
+void AnchorTable::drifts(std::uint32_t slot, const Contact& contact, const BodyMotion& a,
+                         const BodyMotion& b, Real h, const ContactConstraint& c, Vec3* drifts) {
+    if (entries_.size() <= slot)
+        entries_.resize(slot + 1);
+    Entry& entry = entries_[slot];
+    const Vec3& n = c.normal;
+    bool seat = entry.solve + 1 != solve_ || entry.count == 0;
+    entry.solve = solve_;
+    Entry kept = entry;  // the anchors in this step's point order
+    for (int i = 0; i < c.pointCount && !seat; ++i) {
+        const std::uint32_t feature = contact.manifold.points[i].featureId;
+        int k = 0;
+        while (k < entry.count && entry.feature[k] != feature)
+            ++k;
+        if (k == entry.count) {
+            seat = true;
+            break;
+        }
+        kept.onA[i] = entry.onA[k];
+        kept.onB[i] = entry.onB[k];
+        kept.feature[i] = feature;
+        const Vec3 onA = a.center + a.orientation * entry.onA[k];
+        const Vec3 onB = b.center + b.orientation * entry.onB[k];
+        const Vec3 away = 0.5 * (onA + onB) - contact.manifold.points[i].position;
+        seat = onPlane(away, n).norm() >= kReach;
+        drifts[i] = onPlane(onB - onA, n);
+    }
+    if (seat) {
+        for (int i = 0; i < c.pointCount; ++i) {
+            const Vec3& point = contact.manifold.points[i].position;
+            kept.onA[i] = a.orientation.conjugate() * (point - a.center);
+            kept.onB[i] = b.orientation.conjugate() * (point - b.center);
+            kept.feature[i] = contact.manifold.points[i].featureId;
+            drifts[i] = Vec3::Zero();
+        }
+    }
+    kept.count = c.pointCount;
+    entry = kept;
+    for (int i = 0; i < c.pointCount; ++i) {
+        const ContactConstraintPoint& p = c.points[i];
+        const Vec3 bend = 0.5 * h * h *
+                          (b.angularVelocity.cross(b.angularVelocity.cross(p.rB)) -
+                           a.angularVelocity.cross(a.angularVelocity.cross(p.rA)));
+        drifts[i] += onPlane(bend, n);
+    }
+}
+
+// The patch slips as a whole when its friction reaches kSlipShare of its Coulomb limit (a point
+// the normal block left unloaded is at its zero limit while the others stick).
+void AnchorTable::release(std::uint32_t slot, const ContactConstraint& c) {
+    if (slot >= entries_.size())
+        return;
+    Real friction = 0;  // N s
+    Real limit = 0;
+    for (int i = 0; i < c.pointCount; ++i) {
+        friction += std::hypot(c.points[i].tangentImpulse[0], c.points[i].tangentImpulse[1]);
+        limit += c.friction * c.points[i].normalImpulse;
+    }
+    if (c.friction == 0 || friction >= kSlipShare * limit)
+        entries_[slot].count = 0;
+}
+
+}  // namespace tumble

@@ -1,0 +1,45 @@
+#pragma once
+/// What keeps a sticking contact stuck: the friction a manifold carries from step to step
+/// (equilibrateFriction) and, optionally, where its points stuck (friction anchors).
+
+#include "tumble/solver/contact_solver.h"
+
+namespace tumble {
+
+/// Removes the self-equilibrated part of a manifold's friction impulses: the part whose forces
+/// and moment about the normal add up to zero. It moves no body, so no velocity sweep corrects
+/// it, but it is carried to the next step as warm start and counts against each point's Coulomb
+/// disc. Gauss-Seidel leaves a little of it every step (the points are solved in turn), and on a
+/// cube turning with a kinematic platform it grew until the points were at their limits while
+/// the net friction was a fifth of mu sum(lambda_n); the cube then slipped at 0.82 of the
+/// friction it could have. What is kept is the distribution of least sum |lambda_t,i|^2 /
+/// lambda_n,i with the same net tangential impulse and moment about the normal: every point at
+/// the same share of its own disc under a pure pull, as a rigid patch slipping as a whole.
+/// The points are taken as one plane, as a manifold's are (the tipping moment of the tangential
+/// impulses is then fixed by their sum). Left as solved where that distribution would take a
+/// point off its disc (sliding or spinning at the limit). Call after a solve, on the impulses to
+/// be carried.
+void equilibrateFriction(ContactConstraint& c);
+
+/// Split impulse's friction anchor pass: after the relax sweeps, moves each sticking point back
+/// onto its anchors through the pseudo-velocities, which change positions only. A few sweeps of
+/// the friction rows, cold-started, aim each point's tangential pseudo-velocity at -drift / h
+/// within the Coulomb disc of its final normal impulse; after each manifold's friction its
+/// normal block holds the normal pseudo-velocities where the pass found them (the tangential
+/// pull acts below the centre of mass, and alone it tipped a cube on a turning platform onto its
+/// outer edge, within the slop where push-out does not act, and let it go at omega = 0.69 of
+/// 1.98). Its impulses are dropped, never carried.
+class FrictionAnchorPass {
+public:
+    /// `drifts`: 4 per constraint, each point's anchor drift (m, world, tangent plane, B's anchor
+    /// - A's; AnchorTable). `pseudo`: one per body, updated.
+    void run(std::span<const SolverBody> bodies, std::span<const ContactConstraint> constraints,
+             std::span<const Vec3> drifts, std::vector<PseudoVelocity>& pseudo, Real inverseH);
+
+private:
+    std::vector<SolverBody> bodies_;  ///< the bodies at their pseudo-velocities
+    std::vector<Vec3>
+        rows_;  ///< per point: tangential impulses (N s), normal pseudo-velocity (m/s)
+};
+
+}  // namespace tumble

@@ -1,0 +1,173 @@
+// Sticking friction: the carried friction impulses of a manifold without their self-equilibrated
+// part (equilibrateFriction).
+
+#include "tumble/solver/friction_anchors.h"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "normal_block.h"
+
+namespace tumble {
+namespace {
+
+using Vec2 = Eigen::Matrix<Real, 2, 1>;
+
+Real cross(const Vec2& a, const Vec2& b) {
+    return a.x() * b.y() - a.y() * b.x();
+}
+
+// Sweeps of the anchor pass: a sticking manifold's drift is one step's lag, the same at its
+// points, which a few sweeps remove.
+constexpr int kSweeps = 4;
+// Share of a point's Coulomb disc beyond which a manifold's carried friction is equilibrated.
+constexpr Real kCrowdedShare = 0.5;
+// Relative slack on a point's Coulomb disc for the equilibrated friction (rounding).
+constexpr Real kDiscTolerance = 1e-9;
+
+// The share of a disc of radius `limit` that an impulse of size `size` uses (infinite where a
+// point without load carries friction).
+Real share(Real size, Real limit) {
+    if (size == 0)
+        return 0;
+    return limit > 0 ? size / limit : std::numeric_limits<Real>::infinity();
+}
+
+// Holds the manifold's normal pseudo-velocities where the pass found them (rows[i].z()), with
+// impulses of either sign: the face's normal block answers the tangential pull's moment with a
+// shift of load between its points, as the velocity solve does; one-sided, it would lift the
+// body off its inner points instead.
+void holdNormals(SolverBody& a, SolverBody& b, const ContactConstraint& c,
+                 std::span<const Vec3> rows) {
+    const int n = c.pointCount;
+    Vec4 gap = Vec4::Zero();
+    for (int i = 0; i < n; ++i)
+        gap(i) = normalSpeed(a, b, c.normal, c.points[i]) - rows[i].z();
+    // A face's block is singular (three degrees of freedom, four rows): the regularisation picks
+    // the minimum-norm split, as in solveNormalBlock.
+    Mat4 k = Mat4::Identity();
+    k.topLeftCorner(n, n) = c.normalBlock.topLeftCorner(n, n);
+    const Real scale = k.diagonal().head(n).maxCoeff();
+    k.diagonal().head(n).array() += 1e-9 * scale;
+    const Vec4 impulse = -k.ldlt().solve(gap);
+    for (int i = 0; i < n; ++i)
+        applyNormal(a, b, c.normal, c.points[i], impulse(i));
+}
+
+// One sweep over a manifold's friction rows: the sticking answer, clamped to the Coulomb disc
+// (a point that needs more lets its anchors go after the step, so the rim is not worth the
+// exact solve of the velocity sweeps).
+void pullPoints(SolverBody& a, SolverBody& b, const ContactConstraint& c, const Vec3* drifts,
+                Vec3* rows, Real inverseH) {
+    for (int i = 0; i < c.pointCount; ++i) {
+        const ContactConstraintPoint& p = c.points[i];
+        const Vec3 v = b.velocityAt(p.rB) - a.velocityAt(p.rA) + inverseH * drifts[i];
+        const Vec2 slip(c.tangents[0].dot(v), c.tangents[1].dot(v));
+        const Vec2 old = rows[i].head<2>();
+        Vec2 next = old - p.tangent.inverse * slip;
+        const Real radius = c.friction * p.normalImpulse;
+        if (next.squaredNorm() > radius * radius)
+            next *= radius / next.norm();
+        const Vec2 delta = next - old;
+        const Vec3 impulse = delta.x() * c.tangents[0] + delta.y() * c.tangents[1];
+        applyImpulse(a, -impulse, p.rA);
+        applyImpulse(b, impulse, p.rB);
+        rows[i].head<2>() = next;
+    }
+}
+
+}  // namespace
+
+void FrictionAnchorPass::run(std::span<const SolverBody> bodies,
+                             std::span<const ContactConstraint> constraints,
+                             std::span<const Vec3> drifts, std::vector<PseudoVelocity>& pseudo,
+                             Real inverseH) {
+    bodies_.assign(bodies.begin(), bodies.end());
+    for (std::size_t i = 0; i < bodies_.size(); ++i) {
+        bodies_[i].linearVelocity = pseudo[i].linear;
+        bodies_[i].angularVelocity = pseudo[i].angular;
+    }
+    rows_.assign(4 * constraints.size(), Vec3::Zero());
+    for (std::size_t j = 0; j < constraints.size(); ++j) {
+        const ContactConstraint& c = constraints[j];
+        for (int i = 0; i < c.pointCount; ++i)
+            rows_[4 * j + i].z() =
+                normalSpeed(bodies_[c.bodyA], bodies_[c.bodyB], c.normal, c.points[i]);
+    }
+    for (int sweep = 0; sweep < kSweeps; ++sweep) {
+        for (std::size_t j = 0; j < constraints.size(); ++j) {
+            const ContactConstraint& c = constraints[j];
+            if (c.friction == 0)
+                continue;
+            SolverBody& a = bodies_[c.bodyA];
+            SolverBody& b = bodies_[c.bodyB];
+            pullPoints(a, b, c, &drifts[4 * j], &rows_[4 * j], inverseH);
+            if (c.pointCount > 1)
+                holdNormals(a, b, c, std::span(rows_).subspan(4 * j, c.pointCount));
+        }
+    }
+    for (std::size_t i = 0; i < bodies_.size(); ++i) {
+        pseudo[i].linear = bodies_[i].linearVelocity;
+        pseudo[i].angular = bodies_[i].angularVelocity;
+    }
+}
+
+// Minimise sum |f_i|^2 / w_i (w_i = lambda_n,i) subject to sum f_i = F and
+// sum d_i x f_i = M (d_i: the point from the load-weighted centre, on the tangent plane). The
+// Lagrange conditions give f_i = w_i (a + s perp(d_i)); sum w_i d_i = 0 separates the two:
+// a = F / sum w_i, s = M / sum w_i |d_i|^2.
+void equilibrateFriction(ContactConstraint& c) {
+    const int n = c.pointCount;
+    if (n < 2 || c.friction == 0)
+        return;
+    std::array<Vec2, 4> d;
+    Real load = 0;  // N s
+    Vec2 center = Vec2::Zero();
+    Vec2 force = Vec2::Zero();  // N s
+    for (int i = 0; i < n; ++i) {
+        const ContactConstraintPoint& p = c.points[i];
+        d[i] = Vec2(p.rB.dot(c.tangents[0]), p.rB.dot(c.tangents[1]));
+        load += p.normalImpulse;
+        center += p.normalImpulse * d[i];
+        force += Vec2(p.tangentImpulse[0], p.tangentImpulse[1]);
+    }
+    if (load <= 0)
+        return;
+    center /= load;
+    Real moment = 0;  // N m s
+    Real spread = 0;  // N s m^2
+    for (int i = 0; i < n; ++i) {
+        const ContactConstraintPoint& p = c.points[i];
+        d[i] -= center;
+        moment += cross(d[i], Vec2(p.tangentImpulse[0], p.tangentImpulse[1]));
+        spread += p.normalImpulse * d[i].squaredNorm();
+    }
+    // One loaded point (or all at the centre) cannot carry a moment by its friction: keep what
+    // the solve found.
+    if (spread <= 0 && moment != 0)
+        return;
+    const Vec2 shift = force / load;
+    const Real spin = spread > 0 ? moment / spread : 0;
+    std::array<Vec2, 4> f;
+    Real before = 0;  // the largest share of its disc a point uses, as solved
+    Real after = 0;   // and equilibrated
+    for (int i = 0; i < n; ++i) {
+        const ContactConstraintPoint& p = c.points[i];
+        const Real limit = c.friction * p.normalImpulse;
+        f[i] = p.normalImpulse * (shift + spin * Vec2(-d[i].y(), d[i].x()));
+        before =
+            std::max(before, share(std::hypot(p.tangentImpulse[0], p.tangentImpulse[1]), limit));
+        const Real next = share(f[i].norm(), limit);
+        if (!(next <= 1 + kDiscTolerance))  // off its disc, or not finite
+            return;
+        after = std::max(after, next);
+    }
+    if (!(before >= kCrowdedShare && after < before))
+        return;
+    for (int i = 0; i < n; ++i)
+        c.points[i].tangentImpulse = {f[i].x(), f[i].y()};
+}
+
+}  // namespace tumble

@@ -1,0 +1,172 @@
+// A box on a kinematic platform that turns ever faster: it must stick until the friction it
+// needs, m r sqrt(omega^4 + alpha^2), reaches mu m g, then slip (issue 20 item 4). Two faults
+// kept it from that. The warm-started friction of a manifold grew a self-equilibrated part
+// (equilibrateFriction): the points reached their Coulomb discs while the net friction was a
+// fifth of the limit, and the cube slipped at 0.82 of mu g. And velocity-level friction holds
+// velocities, not places: the cube crept outward by omega^2 r h^2 / 2 a step (r = 1 -> 1.33 m
+// by omega = 1.72); friction anchors (SolverSettings::frictionAnchors) hold it.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "testkit/scenes.h"
+#include "tumble/world.h"
+
+namespace tumble {
+namespace {
+
+using testkit::kGravity;
+
+constexpr Real kHalf = 0.1;  // the cube's half edge (m)
+// Speed of the cube's centre against the platform's point under it that counts as slipping
+// (m/s). Sticking, it is below 1e-8; past the onset it grows as j t^2 / 2 (j = 2 omega alpha r,
+// 0.2 m/s^3 in the issue's case), which reaches this within 0.3 % of the onset's omega.
+constexpr Real kSlipSpeed = 1e-3;
+
+struct Ride {
+    Real mu = 0.4;
+    Real radius = 1;    ///< of the cube's centre (m)
+    Real heading = 0;   ///< of the cube's spot from the axis (rad)
+    Real yaw = 0;       ///< of the cube about its vertical (rad)
+    Real alpha = 0.05;  ///< the platform's angular acceleration (rad/s^2)
+    Real h = 1.0 / 60;
+    bool anchors = false;
+};
+
+struct Outcome {
+    Real slipOmega = -1;  ///< platform's spin when the cube slipped (rad/s); -1: never
+    Real slipRadius = 0;  ///< the cube's distance from the axis then (m)
+    Real worstDrift = 0;  ///< largest distance from its spot on the platform before `holdUntil`
+    /// while sticking, the largest share of its disc a point uses beyond both half of it and
+    /// the share the manifold's net friction needs
+    Real worstCrowding = 0;
+};
+
+// The spin at which the friction needed at radius r reaches mu g (rad/s).
+Real slipOmega(const Ride& ride, Real r) {
+    const Real limit = ride.mu * kGravity / r;
+    return std::sqrt(std::sqrt(limit * limit - ride.alpha * ride.alpha));
+}
+
+// A 0.2 m cube on a 4 x 4 m kinematic slab, both of friction mu, the slab turning at alpha t.
+Outcome ride(const Ride& ride, Real holdUntil) {
+    WorldDef def = testkit::quietWorld(ride.h);
+    def.solver.frictionAnchors = ride.anchors;
+    World world(def);
+    const Material surface{.friction = ride.mu};
+    const BodyId slab =
+        world.createBody(BodyDef{.type = BodyType::Kinematic, .position = Vec3(0, 0, -kHalf)});
+    world.createShape(slab, ShapeDef{.geometry = Box{Vec3(2, 2, kHalf)}, .material = surface});
+    const Vec3 spot(ride.radius * std::cos(ride.heading), ride.radius * std::sin(ride.heading),
+                    kHalf);
+    const BodyId cube = world.createBody(BodyDef{
+        .position = spot, .orientation = Quat(Eigen::AngleAxis<Real>(ride.yaw, Vec3::UnitZ()))});
+    world.createShape(cube, ShapeDef{.geometry = Box{Vec3::Constant(kHalf)}, .material = surface});
+    Outcome out;
+    const int steps = static_cast<int>(1.2 * slipOmega(ride, ride.radius) / ride.alpha / ride.h);
+    for (int i = 0; i < steps; ++i) {
+        const Real omega = ride.alpha * i * ride.h;
+        world.setAngularVelocity(slab, Vec3(0, 0, omega));
+        const Vec3 before = world.centerOfMass(cube);
+        world.step();
+        // The platform's velocity at the centre's pose of the step's start, which the contact
+        // matches when it sticks.
+        const Vec3 slip = world.linearVelocity(cube) - Vec3(0, 0, omega).cross(before);
+        if (slip.head<2>().norm() > kSlipSpeed) {
+            out.slipOmega = omega;
+            out.slipRadius = before.head<2>().norm();
+            return out;
+        }
+        const Transform frame = world.transform(slab);
+        const Vec3 onSlab =
+            frame.rotation.conjugate() * (world.centerOfMass(cube) - frame.position);
+        if (omega < holdUntil)
+            out.worstDrift = std::max(out.worstDrift, (onSlab - spot).head<2>().norm());
+        for (const Contact& contact : world.contacts()) {
+            Vec3 sum = Vec3::Zero();
+            Real load = 0;
+            Real crowded = 0;  // the largest share of its Coulomb disc a point uses
+            for (int k = 0; k < contact.manifold.pointCount; ++k) {
+                sum += contact.tangentImpulse[k];
+                load += contact.normalImpulse[k];
+                crowded = std::max(crowded, contact.tangentImpulse[k].norm() /
+                                                (ride.mu * contact.normalImpulse[k]));
+            }
+            const Real needed = sum.norm() / (ride.mu * load);
+            out.worstCrowding = std::max(out.worstCrowding, crowded - std::max(0.5, needed));
+        }
+    }
+    return out;
+}
+
+// Random spots, yaws, mu, radii, step lengths. The platform's acceleration is chosen so that
+// the creep without anchors, exp(h omega^3 / (6 alpha)), stays within 1.1 (the cube stays
+// on the slab), so the rides without anchors test the friction alone.
+std::vector<Ride> randomRides(bool anchors) {
+    std::mt19937 random(20);
+    std::uniform_real_distribution<Real> radius(0.6, 1.5);
+    std::uniform_real_distribution<Real> angle(0, 2 * std::numbers::pi);
+    std::uniform_real_distribution<Real> mu(0.2, 0.9);
+    std::uniform_real_distribution<Real> pace(2, 6);
+    std::vector<Ride> rides;
+    for (const Real h : {1.0 / 60, 1.0 / 120}) {
+        for (int k = 0; k < 4; ++k) {
+            Ride ride{.mu = mu(random),
+                      .radius = radius(random),
+                      .heading = angle(random),
+                      .yaw = angle(random),
+                      .h = h,
+                      .anchors = anchors};
+            const Real omega = std::sqrt(ride.mu * kGravity / ride.radius);
+            ride.alpha = pace(random) * h * omega * omega * omega;
+            rides.push_back(ride);
+        }
+    }
+    return rides;
+}
+
+// (Now with anchors: equilibrateFriction runs only with them, see solve_stage.cpp.) The cube
+// radius it has reached is mu g, and while it sticks no point's friction uses more of its disc
+// than half or the manifold's net friction needs (before the fix: points on their discs at a
+// fifth of the net limit).
+TEST(StickingFriction, BoxOnATurningPlatformSlipsWhenItNeedsMuG) {
+    for (const Ride& r : randomRides(true)) {
+        SCOPED_TRACE(testing::Message() << "mu " << r.mu << " r " << r.radius << " alpha "
+                                        << r.alpha << " h " << r.h << " yaw " << r.yaw);
+        const Outcome out = ride(r, 0);
+        ASSERT_GT(out.slipOmega, 0);
+        EXPECT_NEAR(out.slipOmega / slipOmega(r, out.slipRadius), 1, 0.03);
+        EXPECT_LT(out.worstCrowding, 0.05);
+    }
+}
+
+// The issue's reproduction: r = 1 m, omega = 0.05 t, mu = 0.4, h = 1/60, anchors on. The cube
+// stays within 1 mm of its spot until the friction it needs is 0.98 of mu g (then the manifold
+// reaches 0.99 of its limit and lets its anchors go), and slips within 3 % of
+// omega = sqrt(mu g / r) = 1.98. Without anchors: 0.32 m outward by then, and it left at 1.78.
+TEST(StickingFriction, CubeOnATurningPlatformStaysOnItsSpotUntilOmegaSquaredREqualsMuG) {
+    const Ride r{.anchors = true};
+    const Real onset = slipOmega(r, r.radius);
+    const Outcome out = ride(r, 0.99 * onset);
+    EXPECT_LT(out.worstDrift, 1e-3);
+    EXPECT_NEAR(out.slipOmega / onset, 1, 0.03);
+}
+
+// Random spots, yaws, mu, radii and rates with anchors: held within 1 mm, slipping within 3 %.
+TEST(StickingFriction, AnchoredBoxOnATurningPlatformHoldsItsSpotUntilItNeedsMuG) {
+    for (const Ride& r : randomRides(true)) {
+        SCOPED_TRACE(testing::Message() << "mu " << r.mu << " r " << r.radius << " alpha "
+                                        << r.alpha << " h " << r.h << " yaw " << r.yaw);
+        const Real onset = slipOmega(r, r.radius);
+        const Outcome out = ride(r, 0.99 * onset);
+        EXPECT_LT(out.worstDrift, 1e-3);
+        ASSERT_GT(out.slipOmega, 0);
+        EXPECT_NEAR(out.slipOmega / onset, 1, 0.03);
+    }
+}
+
+}  // namespace
+}  // namespace tumble
