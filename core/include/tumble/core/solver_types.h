@@ -55,6 +55,9 @@ struct SolverSettings {
     /// Ball joints' point rows: one exact sparse block solve per sweep (buildJointBlockRows)
     /// or Gauss-Seidel with the other joint rows.
     SpringSolve jointSolve = SpringSolve::Direct;
+    /// The contact sweeps on wide rows of four manifolds coloured so that none of a colour
+    /// share a moving body (contact_rows.h): the same rows, updated in colour order.
+    bool colouredContacts = false;
 };
 
 enum class JointType : std::uint8_t {
