@@ -12,39 +12,80 @@ namespace {
 
 using Vec2 = Eigen::Matrix<Real, 2, 1>;
 
-Lane splat(Real x) {
+[[gnu::always_inline]] inline Lane splat(Real x) {
     return Lane{x, x, x, x};
 }
 
 // a where m is set, b elsewhere.
-Lane select(LaneMask m, Lane a, Lane b) {
+[[gnu::always_inline]] inline Lane select(LaneMask m, Lane a, Lane b) {
     return reinterpret_cast<Lane>((reinterpret_cast<LaneMask>(a) & m) |
                                   (reinterpret_cast<LaneMask>(b) & ~m));
 }
 
-LaneMask greater(Lane a, Lane b) {
+[[gnu::always_inline]] inline LaneMask greater(Lane a, Lane b) {
     return reinterpret_cast<LaneMask>(a > b);
 }
 
-bool any(LaneMask m) {
+[[gnu::always_inline]] inline bool any(LaneMask m) {
     return (m[0] | m[1] | m[2] | m[3]) != 0;
 }
 
-Lane dot(const Lane (&a)[3], const Lane* b) {
+[[gnu::always_inline]] inline Lane dot(const Lane (&a)[3], const Lane* b) {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-Real largestLane(Lane x) {
+[[gnu::always_inline]] inline Real largestLane(Lane x) {
     return std::max({x[0], x[1], x[2], x[3]});
 }
 
-Lane absolute(Lane x) {
+[[gnu::always_inline]] inline Lane absolute(Lane x) {
     return select(greater(Lane{}, x), -x, x);
 }
 
 // max(0, x) as std::max<Real>(0, x) has it.
-Lane positivePart(Lane x) {
+[[gnu::always_inline]] inline Lane positivePart(Lane x) {
     return select(greater(x, Lane{}), x, Lane{});
+}
+
+// L L' x = -c on the active rows (forward, then back substitution, in solveNormalBlock's
+// order); zero on the others.
+[[gnu::always_inline]] inline void solveFactoredLanes(const Lane* l, const Lane (&c)[4],
+                                                      const LaneMask (&active)[4], Lane (&x)[4]) {
+    Lane y[4];
+    for (int i = 0; i < 4; ++i) {
+        Lane sum = select(active[i], -c[i], Lane{});
+        for (int p = 0; p < i; ++p)
+            sum -= l[4 * i + p] * y[p];
+        y[i] = sum / l[5 * i];
+    }
+    for (int i = 3; i >= 0; --i) {
+        Lane sum = y[i];
+        for (int p = i + 1; p < 4; ++p)
+            sum -= l[4 * p + i] * x[p];
+        x[i] = sum / l[5 * i];
+    }
+}
+
+// The checks of solveNormalBlock: on the active rows x >= 0 and w = K x + c = 0, elsewhere
+// w >= 0, both to the tolerance.
+[[gnu::always_inline]] inline void checkActiveSetLanes(const Lane* k, const LaneMask* hasPoint,
+                                                       const Lane (&c)[4],
+                                                       const LaneMask (&active)[4],
+                                                       const Lane (&x)[4], LaneMask& ok) {
+    Lane largestC = absolute(c[0]);
+    for (int i = 1; i < 4; ++i)
+        largestC = select(greater(absolute(c[i]), largestC), absolute(c[i]), largestC);
+    Lane tolerance = splat(kNormalTolerance) * largestC;
+    tolerance = select(greater(splat(kNormalFloor), tolerance), splat(kNormalFloor), tolerance);
+    ok = ~LaneMask{};
+    for (int i = 0; i < 4; ++i) {
+        const Lane w = (((k[4 * i] * x[0] + k[4 * i + 1] * x[1]) + k[4 * i + 2] * x[2]) +
+                        k[4 * i + 3] * x[3]) +
+                       c[i];
+        const LaneMask activeOk = ~greater(Lane{}, x[i]) & ~greater(absolute(w), tolerance);
+        const LaneMask inactiveOk = ~greater(-tolerance, w) | ~hasPoint[i];
+        ok &= (active[i] & activeOk) | (~active[i] & inactiveOk);
+    }
 }
 
 }  // namespace
@@ -267,8 +308,9 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
     LaneMask update = single;
     if (any(fast)) {
         Lane x[4];
-        solveFactored(bundle, c, active, x);
-        const LaneMask ok = checkActiveSet(bundle, c, active, x);
+        solveFactoredLanes(bundle.factor, c, active, x);
+        LaneMask ok;
+        checkActiveSetLanes(bundle.block, bundle.hasPoint, c, active, x, ok);
         for (int lane = 0; lane < kWidth; ++lane)
             alone[lane] = alone[lane] || (fast[lane] != 0 && ok[lane] == 0);
         for (int i = 0; i < 4; ++i)
@@ -308,48 +350,6 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
         }
     }
     return largestChange;
-}
-
-// L L' x = -c on the active rows (forward, then back substitution, in solveNormalBlock's
-// order); zero on the others.
-void ContactRows::solveFactored(const Bundle& bundle, const Lane (&c)[4],
-                                const LaneMask (&active)[4], Lane (&x)[4]) {
-    const Lane* l = bundle.factor;
-    Lane y[4];
-    for (int i = 0; i < 4; ++i) {
-        Lane sum = select(active[i], -c[i], Lane{});
-        for (int p = 0; p < i; ++p)
-            sum -= l[4 * i + p] * y[p];
-        y[i] = sum / l[5 * i];
-    }
-    for (int i = 3; i >= 0; --i) {
-        Lane sum = y[i];
-        for (int p = i + 1; p < 4; ++p)
-            sum -= l[4 * p + i] * x[p];
-        x[i] = sum / l[5 * i];
-    }
-}
-
-// The checks of solveNormalBlock: on the active rows x >= 0 and w = K x + c = 0, elsewhere
-// w >= 0, both to the tolerance.
-LaneMask ContactRows::checkActiveSet(const Bundle& bundle, const Lane (&c)[4],
-                                     const LaneMask (&active)[4], const Lane (&x)[4]) {
-    const Lane* k = bundle.block;
-    Lane largestC = absolute(c[0]);
-    for (int i = 1; i < 4; ++i)
-        largestC = select(greater(absolute(c[i]), largestC), absolute(c[i]), largestC);
-    Lane tolerance = splat(kNormalTolerance) * largestC;
-    tolerance = select(greater(splat(kNormalFloor), tolerance), splat(kNormalFloor), tolerance);
-    LaneMask ok = ~LaneMask{};
-    for (int i = 0; i < 4; ++i) {
-        const Lane w = (((k[4 * i] * x[0] + k[4 * i + 1] * x[1]) + k[4 * i + 2] * x[2]) +
-                        k[4 * i + 3] * x[3]) +
-                       c[i];
-        const LaneMask activeOk = ~greater(Lane{}, x[i]) & ~greater(absolute(w), tolerance);
-        const LaneMask inactiveOk = ~greater(-tolerance, w) | ~bundle.hasPoint[i];
-        ok &= (active[i] & activeOk) | (~active[i] & inactiveOk);
-    }
-    return ok;
 }
 
 Real ContactRows::solveNormalsAlone(Bundle& bundle, int lane, ContactConstraint& c,
