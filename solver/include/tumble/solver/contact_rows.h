@@ -109,10 +109,6 @@ private:
                            ContactConstraint& c, Real omega);
     Real solveNormalsAlone(Bundle& bundle, int lane, ContactConstraint& c, NormalFactor& factor,
                            const SolverSettings& settings, Real bias, Real inverseH);
-    static void solveFactored(const Bundle& bundle, const Lane (&c)[4], const LaneMask (&active)[4],
-                              Lane (&x)[4]);
-    static LaneMask checkActiveSet(const Bundle& bundle, const Lane (&c)[4],
-                                   const LaneMask (&active)[4], const Lane (&x)[4]);
     void gather(const Bundle& bundle, Lane (&v)[2][6]) const;
     void scatter(const Bundle& bundle, const Lane (&v)[2][6]);
 
