@@ -107,8 +107,9 @@ double threadSeconds() {
 
 // The stage times are wall-clock: on a shared machine the step's CPU time is split in their
 // proportions, so the figure is the sweeps' CPU time.
-void BM_SceneSweepRow(benchmark::State& state, bench::SceneKind kind, int size) {
-    const bench::SceneSettings settings;
+void BM_SceneSweepRow(benchmark::State& state, bench::SceneKind kind, int size,
+                      bool coloured = false) {
+    const bench::SceneSettings settings{.colouredContacts = coloured};
     bench::SceneRun run({"tumble", &createWatched},
                         bench::Scene{.name = "sweep", .size = size, .kind = kind}, settings);
     const World& world = *bench::tumbleWorld(*watched);
@@ -135,6 +136,11 @@ void BM_SceneSweepRow(benchmark::State& state, bench::SceneKind kind, int size) 
 BENCHMARK_CAPTURE(BM_SceneSweepRow, pyramid20, bench::SceneKind::Pyramid, 20)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_SceneSweepRow, pile4000, bench::SceneKind::Pile, 4000)
+    ->Unit(benchmark::kMillisecond);
+// The same on coloured wide rows (contact_rows.h).
+BENCHMARK_CAPTURE(BM_SceneSweepRow, pyramid20Coloured, bench::SceneKind::Pyramid, 20, true)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_SceneSweepRow, pile4000Coloured, bench::SceneKind::Pile, 4000, true)
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -224,6 +224,10 @@ int main(int argc, char** argv) {
                    "the study's oscillator and bouncing ball in the peers instead (for Fig. 4 and "
                    "Fig. 5 beside Tumble's): write study-peers-{oscillator,bounce}.csv to this "
                    "directory");
+    bool coloured = false;
+    app.add_flag(
+        "--coloured-contacts", coloured,
+        "Tumble's contact sweeps on coloured wide rows (SolverSettings::colouredContacts)");
     std::vector<std::string> engines;
     app.add_option(
         "--engine", engines,
@@ -266,7 +270,7 @@ int main(int argc, char** argv) {
     if (quick && only.empty())
         only = {"stack-5", "stack-20", "pyramid-20", "net-10", "net-20", "pile-1000"};
 
-    const SceneSettings settings;
+    const SceneSettings settings{.colouredContacts = coloured};
     std::ostringstream header;
     header << "h = 1/" << number(1 / settings.timeStep, "%.0f") << " s, " << settings.iterations
            << " iterations, mu = " << number(settings.friction, "%.2f") << ", restitution 0, "

@@ -39,6 +39,8 @@ struct SceneSettings {
     /// they touch, as its default (speculative contacts, whose target velocity Bullet sums with
     /// the restitution's)? false keeps only touching ones (a contact processing threshold of 0).
     bool speculativeContacts = true;
+    /// Tumble only: its contact sweeps on coloured wide rows (SolverSettings::colouredContacts).
+    bool colouredContacts = false;
 };
 
 /// The pile's shapes. No cylinders: Debian's ODE is built without libccd and has no

@@ -74,6 +74,7 @@ private:
         // As many split-impulse sweeps as velocity sweeps, as Bullet runs its split-impulse pass.
         def.solver.relaxIterations = s.iterations;
         def.enableSleep = false;  // every engine simulates every body
+        def.solver.colouredContacts = s.colouredContacts;
         if (s.correction == SceneSettings::Correction::Baumgarte)
             def.solver.stabilisation = Stabilisation::Baumgarte;
         else if (s.correction == SceneSettings::Correction::SplitImpulse)

@@ -42,7 +42,7 @@ void field(Ar& a, SolverSettings& x) {
     fields(a, x.iterations, x.relaxIterations, x.tolerance, x.relaxation, x.friction,
            x.stabilisation, x.baumgarte, x.splitImpulseFactor, x.slop, x.restitutionThreshold,
            x.warmStart, x.springSolve, x.projectSprings, x.jointGeometricStiffness, x.jointSolve,
-           x.frictionAnchors);
+           x.frictionAnchors, x.colouredContacts);
 }
 template <typename Ar>
 void field(Ar& a, WorldDef& x) {

@@ -26,6 +26,7 @@ SolverStats ConstraintSolver::solve(std::span<SolverBody> bodies,
     });
     profile_.relax =
         timed([&] { relax(bodies, constraints, springs, pseudo, settings, inverseH); });
+    contacts_.finish(constraints);
     profile_.residual = timed([&] {
         stats.maxResidual =
             contacts_.residual(bodies, constraints, settings, inverseH, velocityBias);
@@ -83,10 +84,7 @@ void ConstraintSolver::relax(std::span<SolverBody> bodies, std::span<ContactCons
     if (split) {
         // The bounce's position correction is part of the push-out: the relax sweeps aim at the
         // rebound alone, so it ends up in the pseudo-velocity (normalTarget).
-        for (ContactConstraint& c : constraints) {
-            for (int i = 0; i < c.pointCount; ++i)
-                c.points[i].bounceCorrection = 0;
-        }
+        contacts_.dropBounceCorrections(constraints);
         runSweeps(bodies, constraints, springs, settings, inverseH, 0, settings.relaxIterations);
         for (std::size_t i = 0; i < bodies.size(); ++i) {
             pseudo[i].linear -= bodies[i].linearVelocity;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "bounce_support.h"
+#include "contact_kernels.h"
 #include "normal_block.h"
 #include "tumble/core/error.h"
 
@@ -111,6 +112,8 @@ Impact impactWithinStep(Real s, Real vEnd, Real a, Real h) {
     return {vEnd < 0 ? std::clamp(-s / vEnd, Real(0), h) : h, vEnd};
 }
 
+}  // namespace
+
 // The coupled friction update of one point, solved exactly: the impulse lambda in the disc
 // |lambda| <= r that minimises  1/2 (lambda - old)' K (lambda - old) + vt' (lambda - old),
 // i.e. the best friction this point alone can apply. At its solution the slip velocity after the
@@ -148,8 +151,6 @@ Vec2 solveDisc(const DiscBlock& k, const Vec2& old, const Vec2& vt, Real radius)
     const Vec2 lambda = k.axes * c.cwiseQuotient(moments + Vec2::Constant(nu));
     return lambda * (radius / lambda.norm());  // on the rim to rounding
 }
-
-}  // namespace
 
 // The eigen-decomposition in closed form: k = axes diag(moments) axes'.
 bool DiscBlock::set(const Mat2& k) {
@@ -290,11 +291,38 @@ void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
         }
         applyAngular(a, b, c.angularImpulse);
     }
+    wide_ = settings.colouredContacts;
+    if (wide_)
+        rows_.build(bodies, constraints, settings, 1 / h);
+}
+
+void ContactSolver::dropBounceCorrections(std::span<ContactConstraint> constraints) {
+    for (ContactConstraint& c : constraints) {
+        for (int i = 0; i < c.pointCount; ++i)
+            c.points[i].bounceCorrection = 0;
+    }
+    if (wide_)
+        rows_.dropBounceCorrections();
+}
+
+void ContactSolver::finish(std::span<ContactConstraint> constraints) const {
+    if (wide_)
+        rows_.store(constraints);
 }
 
 Real ContactSolver::solveVelocitySweep(std::span<SolverBody> bodies,
                                        std::span<ContactConstraint> constraints,
                                        const SolverSettings& settings, Real inverseH, Real bias) {
+    if (wide_) {
+        Real largestChange = rows_.sweep(bodies, constraints, factors_, settings, bias, inverseH);
+        if (!islands_.empty()) {
+            largestChange =
+                std::max(largestChange, islands_.solve(bodies, constraints, settings.relaxation,
+                                                       bias, settings.slop, inverseH));
+            rows_.readGroupImpulses(constraints);
+        }
+        return largestChange;
+    }
     const Real omega = settings.relaxation;
     Real largestChange = 0;
     // The change is read only to stop early; measuring it was a tenth of the friction rows.
@@ -339,8 +367,8 @@ Real ContactSolver::solveVelocitySweep(std::span<SolverBody> bodies,
         if (c.spinMass > 0 || c.rollingActive)
             largestChange = std::max(largestChange, solveAngularFriction(a, b, c, omega));
         if (c.normalGroup == NormalIslands::kNone) {
-            solveNormals(a, b, c, factors_[&c - constraints.data()], settings, inverseH, bias,
-                         largestChange);
+            solveManifoldNormals(a, b, c, factors_[&c - constraints.data()], settings, inverseH,
+                                 bias, largestChange);
         }
     }
     if (!islands_.empty()) {
@@ -357,8 +385,7 @@ Real ContactSolver::solveVelocitySweep(std::span<SolverBody> bodies,
 // sum(lambda_n), solved exactly as the point friction is (solveDisc), relaxed by the SOR factor
 // like it. The disc is used under the box friction model too: the study's box model is about
 // linear friction. Returns the change as a speed at the manifold's farthest point (m/s).
-Real ContactSolver::solveAngularFriction(SolverBody& a, SolverBody& b, ContactConstraint& c,
-                                         Real omega) const {
+Real solveAngularFriction(SolverBody& a, SolverBody& b, ContactConstraint& c, Real omega) {
     Real normalImpulse = 0;
     for (int i = 0; i < c.pointCount; ++i)
         normalImpulse += c.points[i].normalImpulse;
@@ -392,9 +419,9 @@ Real ContactSolver::solveAngularFriction(SolverBody& a, SolverBody& b, ContactCo
     return std::max(spinChange, rollingChange) * c.angularReach;
 }
 
-void ContactSolver::solveNormals(SolverBody& a, SolverBody& b, ContactConstraint& c,
-                                 NormalFactor& factor, const SolverSettings& settings,
-                                 Real inverseH, Real bias, Real& largestChange) const {
+void solveManifoldNormals(SolverBody& a, SolverBody& b, ContactConstraint& c, NormalFactor& factor,
+                          const SolverSettings& settings, Real inverseH, Real bias,
+                          Real& largestChange) {
     const Real omega = settings.relaxation;
     const int n = c.pointCount;
     Vec4 old = Vec4::Zero();

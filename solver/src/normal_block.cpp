@@ -12,9 +12,6 @@ namespace {
 // (the null-space part of a right-hand side is amplified by 1 / eps), small enough not to move a
 // well-posed answer by more than eps relative: a resting box keeps ~1e-11 m/s.
 constexpr Real kRegularisation = 1e-10;
-// Equalities and inequalities are checked to this fraction of the largest |c| (m/s).
-constexpr Real kTolerance = 1e-7;
-constexpr Real kFloor = 1e-12;  // (m/s): when every |c| is zero
 
 // The active sets of four rows as bit masks, largest first, so the resting case (all four) and
 // then the three-point cases are found first.
@@ -76,7 +73,8 @@ void solveFactored(const NormalFactor& f, const Vec4& c, Vec4& x) {
 bool solveNormalBlock(const Mat4& k, int n, const Vec4& c, Vec4& lambda, NormalFactor& factor) {
     const unsigned all = (1u << n) - 1;
     const Real eps = kRegularisation * k.diagonal().head(n).maxCoeff();
-    const Real tolerance = std::max(kTolerance * c.head(n).cwiseAbs().maxCoeff(), kFloor);
+    const Real tolerance =
+        std::max(kNormalTolerance * c.head(n).cwiseAbs().maxCoeff(), kNormalFloor);
     // The set that carried load last time is usually the answer (a resting face: all of it; a
     // face merely touching: none of it), so it is tried first.
     unsigned guess = 0;

@@ -30,6 +30,11 @@ namespace tumble {
 using Mat4 = Eigen::Matrix<Real, 4, 4>;
 using Vec4 = Eigen::Matrix<Real, 4, 1>;
 
+/// Equalities and inequalities are checked to this fraction of the largest |c| (m/s), and to
+/// kNormalFloor when every |c| is zero.
+constexpr Real kNormalTolerance = 1e-7;
+constexpr Real kNormalFloor = 1e-12;
+
 /// Solves the LCP above for the first n (1..4) rows of k and c. `lambda` comes in as the last
 /// answer (its positive entries are the first active set tried) and on success goes out as the
 /// new one (entries past n zero); returns false when no active set checks out to rounding (a

@@ -59,6 +59,9 @@ struct SolverSettings {
     /// where they stuck, so a box on a turning platform stays on its spot instead of creeping
     /// outward (engine/src/anchor_table.h).
     bool frictionAnchors = false;
+    /// The contact sweeps on wide rows of four manifolds coloured so that none of a colour
+    /// share a moving body (contact_rows.h): the same rows, updated in colour order.
+    bool colouredContacts = false;
 };
 
 enum class JointType : std::uint8_t {

@@ -51,6 +51,7 @@
 #include <vector>
 
 #include "tumble/core/solver_types.h"
+#include "tumble/solver/contact_rows.h"
 #include "tumble/solver/normal_islands.h"
 #include "tumble/solver/solver_body.h"
 
@@ -182,16 +183,20 @@ public:
                   std::span<const ContactConstraint> constraints, const SolverSettings& settings,
                   Real inverseH, Real bias) const;
 
-private:
-    Real solveAngularFriction(SolverBody& a, SolverBody& b, ContactConstraint& c, Real omega) const;
-    void solveNormals(SolverBody& a, SolverBody& b, ContactConstraint& c, NormalFactor& factor,
-                      const SolverSettings& settings, Real inverseH, Real bias,
-                      Real& largestChange) const;
+    /// Split impulse's relax sweeps aim at the rebound alone: drops the bounces' position
+    /// correction (normalTarget) before them.
+    void dropBounceCorrections(std::span<ContactConstraint> constraints);
+    /// After the last sweep: the impulses are back in the constraints (wide rows only; the
+    /// narrow path works in them).
+    void finish(std::span<ContactConstraint> constraints) const;
 
+private:
     NormalIslands islands_;                  ///< normal rows of small, ill-conditioned groups,
                                              ///< solved exactly
     std::vector<SolverBody> supportBodies_;  ///< scratch of addSupportAcceleration
     std::vector<NormalFactor> factors_;      ///< each manifold's block factor, this step
+    ContactRows rows_;                       ///< the wide rows (settings.colouredContacts)
+    bool wide_ = false;                      ///< this step sweeps rows_
 };
 
 }  // namespace tumble

@@ -1,0 +1,124 @@
+#pragma once
+/// The contact sweeps on compact, wide rows (SolverSettings::colouredContacts): the same rows as
+/// ContactSolver's -- coupled or box friction per point, the manifold's normal block solved
+/// exactly, the angular friction rows, the exactly solved groups -- laid out for four
+/// manifolds at a time.
+///
+/// Colouring. Manifolds are coloured greedily in constraint order so that no two of one colour
+/// share a body that can move (static and kinematic bodies never colour: the rows never change
+/// their velocity). A colour's manifolds are independent, so four of them are updated together,
+/// one per lane; within a sweep the colours run in order, and within a colour the bundles.
+/// Gauss-Seidel then updates the manifolds in colour order instead of constraint order: the same
+/// fixed point, other rounding and other intermediate iterates. Manifolds a colour cannot take
+/// (more than kColours colours around one body) are solved alone, one lane of four.
+///
+/// Lanes. A lane is four doubles (GCC/Clang vector extension, 32 bytes): each operation is the
+/// IEEE operation per lane, so the bits do not depend on the ISA the compiler picks (AVX2 or two
+/// SSE2 halves) as long as nothing contracts a*b+c into an FMA (the project builds with
+/// -ffp-contract=off). Padding lanes point at a dummy body with no mass and carry zero rows.
+///
+/// Per sweep and bundle: gather both bodies' velocities into lanes; the friction of every point
+/// (the free 2x2 solve in the lanes, the exact disc -- ContactSolver's solveDisc -- only for a
+/// lane whose free answer leaves the disc); the angular friction rows (lane by lane, rare); the
+/// normal block with the factor of the active set it cached (in the lanes when last sweep's set
+/// still carries the load, otherwise the full active-set search of solveNormalBlock for that
+/// lane). The velocities live in a compact per-body array during a sweep.
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "tumble/core/solver_types.h"
+#include "tumble/solver/solver_body.h"
+
+namespace tumble {
+
+struct ContactConstraint;  // contact_solver.h, which holds a ContactRows
+struct NormalFactor;
+
+/// Four doubles, one per lane, and a lane mask (all bits set where true).
+using Lane = double __attribute__((vector_size(32), aligned(32)));
+using LaneMask = std::int64_t __attribute__((vector_size(32), aligned(32)));
+
+class ContactRows {
+public:
+    static constexpr int kWidth = 4;
+    static constexpr int kColours = 64;
+
+    /// Colours the prepared constraints and builds the rows from them (their Jacobians, masses,
+    /// targets and warm-start impulses). Allocates only when the arrays grow.
+    void build(std::span<const SolverBody> bodies, std::span<const ContactConstraint> constraints,
+               const SolverSettings& settings, Real inverseH);
+    /// One sweep over the rows, as ContactSolver::solveVelocitySweep (which calls it) without
+    /// the exactly solved groups; returns the largest velocity change (m/s) when measuring.
+    Real sweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
+               std::span<NormalFactor> factors, const SolverSettings& settings, Real bias,
+               Real inverseH);
+    /// The normal impulses of the manifolds in exactly solved groups, after the groups' solve.
+    void readGroupImpulses(std::span<const ContactConstraint> constraints);
+    /// Split impulse's relax sweeps aim at the rebound alone (see ConstraintSolver::relax).
+    void dropBounceCorrections();
+    /// Writes the impulses back into the constraints (warm start of the next step, reports).
+    void store(std::span<ContactConstraint> constraints) const;
+    /// Number of colours of the last build (the overflow of solo manifolds not counted).
+    int colourCount() const { return colourCount_; }
+
+private:
+    struct Point {
+        Lane angularA[3], angularB[3];  // rA x n, rB x n
+        Lane impulseA[3], impulseB[3];  // I^-1 (r x n)
+        Lane tangentAngularA[2][3], tangentAngularB[2][3];
+        Lane tangentImpulseA[2][3], tangentImpulseB[2][3];
+        Lane tangentBlock[4], tangentInverse[4];  // K and K^-1 on the tangent plane, by rows
+        Lane tangentMass[2];                      // box model
+        Lane normalMass;
+        Lane normalImpulse, tangentImpulse[2];
+        // normalTarget = (targetBase + bias/h * depth) - bounceCorrection/h
+        Lane targetBase, depth, correction;
+    };
+    struct Bundle {
+        std::array<std::uint32_t, 4> bodyA{}, bodyB{}, constraint{};
+        std::array<std::uint8_t, 4> points{};  // per lane; 0 for padding
+        std::uint8_t maxPoints = 0;
+        std::uint8_t laneCount = 0;
+        bool angular = false;           // a lane has spinning or rolling rows
+        bool grouped = false;           // a lane's normal rows belong to an exactly solved group
+        std::array<bool, 4> normals{};  // per lane: this sweep solves its normal rows
+        std::array<unsigned, 4> factorSet{};  // the active set `factor` holds, per lane
+        Lane normal[3], tangents[2][3];
+        Lane inverseMassA, inverseMassB, friction;
+        LaneMask hasPoint[4];  // lanes whose manifold has point i
+        Lane block[16];        // the normal block K, by rows
+        Lane factor[16];       // L of the cached active set by rows, identity on the other rows
+        Point point[4];
+    };
+    struct Velocity {
+        Real v[6];  // linear, then angular (world)
+    };
+
+    void colour(std::span<const SolverBody> bodies, std::span<const ContactConstraint> constraints);
+    void fill(Bundle& bundle, int lane, const ContactConstraint& c, std::uint32_t index, Real slop,
+              Real inverseH) const;
+    Real solveFriction(Bundle& bundle, std::span<const ContactConstraint> constraints,
+                       const SolverSettings& settings, Lane (&v)[2][6]) const;
+    Real solveNormals(Bundle& bundle, std::span<ContactConstraint> constraints,
+                      std::span<NormalFactor> factors, const SolverSettings& settings, Real bias,
+                      Real inverseH, Lane (&v)[2][6]);
+    Real solveAngularAlone(Bundle& bundle, int lane, std::span<const SolverBody> bodies,
+                           ContactConstraint& c, Real omega);
+    Real solveNormalsAlone(Bundle& bundle, int lane, ContactConstraint& c, NormalFactor& factor,
+                           const SolverSettings& settings, Real bias, Real inverseH);
+    void gather(const Bundle& bundle, Lane (&v)[2][6]) const;
+    void scatter(const Bundle& bundle, const Lane (&v)[2][6]);
+
+    std::vector<Bundle> bundles_;
+    std::vector<Velocity> velocities_;  // per body, then the dummy of the padding lanes
+    std::vector<std::uint64_t> bodyColours_;
+    std::vector<std::uint8_t> constraintColour_;  // kColours: solo
+    std::vector<std::uint32_t> colourCounts_;
+    std::vector<std::uint32_t> order_;
+    int colourCount_ = 0;
+};
+
+}  // namespace tumble

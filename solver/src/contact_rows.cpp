@@ -1,0 +1,394 @@
+// ContactRows' sweep (contact_rows.h): four manifolds per bundle, one per lane.
+#include "tumble/solver/contact_rows.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "contact_kernels.h"
+#include "normal_block.h"
+
+namespace tumble {
+namespace {
+
+using Vec2 = Eigen::Matrix<Real, 2, 1>;
+
+[[gnu::always_inline]] inline Lane splat(Real x) {
+    return Lane{x, x, x, x};
+}
+
+// a where m is set, b elsewhere.
+[[gnu::always_inline]] inline Lane select(LaneMask m, Lane a, Lane b) {
+    return reinterpret_cast<Lane>((reinterpret_cast<LaneMask>(a) & m) |
+                                  (reinterpret_cast<LaneMask>(b) & ~m));
+}
+
+[[gnu::always_inline]] inline LaneMask greater(Lane a, Lane b) {
+    return reinterpret_cast<LaneMask>(a > b);
+}
+
+[[gnu::always_inline]] inline bool any(LaneMask m) {
+    return (m[0] | m[1] | m[2] | m[3]) != 0;
+}
+
+[[gnu::always_inline]] inline Lane dot(const Lane (&a)[3], const Lane* b) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+[[gnu::always_inline]] inline Real largestLane(Lane x) {
+    return std::max({x[0], x[1], x[2], x[3]});
+}
+
+[[gnu::always_inline]] inline Lane absolute(Lane x) {
+    return select(greater(Lane{}, x), -x, x);
+}
+
+// max(0, x) as std::max<Real>(0, x) has it.
+[[gnu::always_inline]] inline Lane positivePart(Lane x) {
+    return select(greater(x, Lane{}), x, Lane{});
+}
+
+// L L' x = -c on the active rows (forward, then back substitution, in solveNormalBlock's
+// order); zero on the others.
+[[gnu::always_inline]] inline void solveFactoredLanes(const Lane* l, const Lane (&c)[4],
+                                                      const LaneMask (&active)[4], Lane (&x)[4]) {
+    Lane y[4];
+    for (int i = 0; i < 4; ++i) {
+        Lane sum = select(active[i], -c[i], Lane{});
+        for (int p = 0; p < i; ++p)
+            sum -= l[4 * i + p] * y[p];
+        y[i] = sum / l[5 * i];
+    }
+    for (int i = 3; i >= 0; --i) {
+        Lane sum = y[i];
+        for (int p = i + 1; p < 4; ++p)
+            sum -= l[4 * p + i] * x[p];
+        x[i] = sum / l[5 * i];
+    }
+}
+
+// The checks of solveNormalBlock: on the active rows x >= 0 and w = K x + c = 0, elsewhere
+// w >= 0, both to the tolerance.
+[[gnu::always_inline]] inline void checkActiveSetLanes(const Lane* k, const LaneMask* hasPoint,
+                                                       const Lane (&c)[4],
+                                                       const LaneMask (&active)[4],
+                                                       const Lane (&x)[4], LaneMask& ok) {
+    Lane largestC = absolute(c[0]);
+    for (int i = 1; i < 4; ++i)
+        largestC = select(greater(absolute(c[i]), largestC), absolute(c[i]), largestC);
+    Lane tolerance = splat(kNormalTolerance) * largestC;
+    tolerance = select(greater(splat(kNormalFloor), tolerance), splat(kNormalFloor), tolerance);
+    ok = ~LaneMask{};
+    for (int i = 0; i < 4; ++i) {
+        const Lane w = (((k[4 * i] * x[0] + k[4 * i + 1] * x[1]) + k[4 * i + 2] * x[2]) +
+                        k[4 * i + 3] * x[3]) +
+                       c[i];
+        const LaneMask activeOk = ~greater(Lane{}, x[i]) & ~greater(absolute(w), tolerance);
+        const LaneMask inactiveOk = ~greater(-tolerance, w) | ~hasPoint[i];
+        ok &= (active[i] & activeOk) | (~active[i] & inactiveOk);
+    }
+}
+
+}  // namespace
+
+// The lane kernels are compiled twice, for AVX2 and for the x86-64 baseline, the copy chosen
+// when the program loads: every lane operation is the same IEEE operation in both and no FMA is
+// formed (-ffp-contract=off), so the bits are the same on every machine.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
+    !defined(TUMBLE_NO_LANE_CLONES)
+#define TUMBLE_LANE_KERNEL __attribute__((target_clones("avx2", "default"), flatten))
+#else
+#define TUMBLE_LANE_KERNEL
+#endif
+
+void ContactRows::gather(const Bundle& bundle, Lane (&v)[2][6]) const {
+    for (int k = 0; k < 6; ++k) {
+        for (int lane = 0; lane < kWidth; ++lane) {
+            v[0][k][lane] = velocities_[bundle.bodyA[lane]].v[k];
+            v[1][k][lane] = velocities_[bundle.bodyB[lane]].v[k];
+        }
+    }
+}
+
+// A body in two lanes of a bundle cannot move (colouring): every lane writes its unchanged
+// velocity back.
+void ContactRows::scatter(const Bundle& bundle, const Lane (&v)[2][6]) {
+    for (int lane = 0; lane < kWidth; ++lane) {
+        for (int k = 0; k < 6; ++k) {
+            velocities_[bundle.bodyA[lane]].v[k] = v[0][k][lane];
+            velocities_[bundle.bodyB[lane]].v[k] = v[1][k][lane];
+        }
+    }
+}
+
+Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
+                        std::span<NormalFactor> factors, const SolverSettings& settings, Real bias,
+                        Real inverseH) {
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        for (int k = 0; k < 3; ++k) {
+            velocities_[i].v[k] = bodies[i].linearVelocity[k];
+            velocities_[i].v[3 + k] = bodies[i].angularVelocity[k];
+        }
+    }
+    Real largestChange = 0;
+    for (Bundle& bundle : bundles_) {
+        Lane v[2][6];
+        gather(bundle, v);
+        largestChange = std::max(largestChange, solveFriction(bundle, constraints, settings, v));
+        if (bundle.angular) {
+            scatter(bundle, v);
+            for (int lane = 0; lane < bundle.laneCount; ++lane) {
+                ContactConstraint& c = constraints[bundle.constraint[lane]];
+                if (c.spinMass > 0 || c.rollingActive) {
+                    largestChange =
+                        std::max(largestChange,
+                                 solveAngularAlone(bundle, lane, bodies, c, settings.relaxation));
+                }
+            }
+            gather(bundle, v);
+        }
+        largestChange = std::max(
+            largestChange, solveNormals(bundle, constraints, factors, settings, bias, inverseH, v));
+    }
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        for (int k = 0; k < 3; ++k) {
+            bodies[i].linearVelocity[k] = velocities_[i].v[k];
+            bodies[i].angularVelocity[k] = velocities_[i].v[3 + k];
+        }
+    }
+    return largestChange;
+}
+
+// The friction of every point, point by point as ContactSolver does, four manifolds at a time.
+// Coupled: the free answer K^-1 (K old - vt) in the lanes, solveDisc for a lane whose answer
+// leaves the disc.
+TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle,
+                                                   std::span<const ContactConstraint> constraints,
+                                                   const SolverSettings& settings,
+                                                   Lane (&v)[2][6]) const {
+    const Lane omega = splat(settings.relaxation);
+    const bool coupled = settings.friction == FrictionModel::Coupled;
+    Real largestChange = 0;
+    for (int i = 0; i < bundle.maxPoints; ++i) {
+        Point& q = bundle.point[i];
+        Lane dv[3];
+        for (int k = 0; k < 3; ++k)
+            dv[k] = v[1][k] - v[0][k];
+        Lane vt[2];
+        for (int r = 0; r < 2; ++r) {
+            vt[r] = (dot(bundle.tangents[r], dv) + dot(q.tangentAngularB[r], v[1] + 3)) -
+                    dot(q.tangentAngularA[r], v[0] + 3);
+        }
+        const Lane old0 = q.tangentImpulse[0];
+        const Lane old1 = q.tangentImpulse[1];
+        const Lane limit = bundle.friction * q.normalImpulse;
+        Lane next0;
+        Lane next1;
+        if (coupled) {
+            const Lane* k = q.tangentBlock;
+            const Lane* inverse = q.tangentInverse;
+            const Lane b0 = (k[0] * old0 + k[1] * old1) - vt[0];
+            const Lane b1 = (k[2] * old0 + k[3] * old1) - vt[1];
+            const LaneMask positive = greater(limit, Lane{});
+            Lane solved0 = select(positive, inverse[0] * b0 + inverse[1] * b1, Lane{});
+            Lane solved1 = select(positive, inverse[2] * b0 + inverse[3] * b1, Lane{});
+            const LaneMask rim =
+                positive & greater(solved0 * solved0 + solved1 * solved1, limit * limit);
+            if (any(rim)) {
+                for (int lane = 0; lane < kWidth; ++lane) {
+                    if (rim[lane] == 0)
+                        continue;
+                    const DiscBlock& disc = constraints[bundle.constraint[lane]].points[i].tangent;
+                    const Vec2 solved = solveDisc(disc, Vec2(old0[lane], old1[lane]),
+                                                  Vec2(vt[0][lane], vt[1][lane]), limit[lane]);
+                    solved0[lane] = solved.x();
+                    solved1[lane] = solved.y();
+                }
+            }
+            next0 = old0 + omega * (solved0 - old0);
+            next1 = old1 + omega * (solved1 - old1);
+        } else {
+            next0 = old0 - omega * (q.tangentMass[0] * vt[0]);
+            next1 = old1 - omega * (q.tangentMass[1] * vt[1]);
+            next0 = select(greater(-limit, next0), -limit, next0);
+            next1 = select(greater(-limit, next1), -limit, next1);
+            next0 = select(greater(next0, limit), limit, next0);
+            next1 = select(greater(next1, limit), limit, next1);
+        }
+        const Lane delta0 = next0 - old0;
+        const Lane delta1 = next1 - old1;
+        for (int k = 0; k < 3; ++k) {
+            const Lane linear = delta0 * bundle.tangents[0][k] + delta1 * bundle.tangents[1][k];
+            v[0][k] -= bundle.inverseMassA * linear;
+            v[0][3 + k] -= delta0 * q.tangentImpulseA[0][k] + delta1 * q.tangentImpulseA[1][k];
+            v[1][k] += bundle.inverseMassB * linear;
+            v[1][3 + k] += delta0 * q.tangentImpulseB[0][k] + delta1 * q.tangentImpulseB[1][k];
+        }
+        q.tangentImpulse[0] = next0;
+        q.tangentImpulse[1] = next1;
+        if (settings.tolerance > 0) {
+            const Lane* k = q.tangentBlock;
+            const Lane change0 = k[0] * delta0 + k[1] * delta1;
+            const Lane change1 = k[2] * delta0 + k[3] * delta1;
+            largestChange = std::max(largestChange,
+                                     std::sqrt(largestLane(change0 * change0 + change1 * change1)));
+        }
+    }
+    return largestChange;
+}
+
+Real ContactRows::solveAngularAlone(Bundle& bundle, int lane, std::span<const SolverBody> bodies,
+                                    ContactConstraint& c, Real omega) {
+    SolverBody a = bodies[c.bodyA];
+    SolverBody b = bodies[c.bodyB];
+    Velocity& va = velocities_[c.bodyA];
+    Velocity& vb = velocities_[c.bodyB];
+    a.linearVelocity = Vec3(va.v[0], va.v[1], va.v[2]);
+    a.angularVelocity = Vec3(va.v[3], va.v[4], va.v[5]);
+    b.linearVelocity = Vec3(vb.v[0], vb.v[1], vb.v[2]);
+    b.angularVelocity = Vec3(vb.v[3], vb.v[4], vb.v[5]);
+    for (int i = 0; i < c.pointCount; ++i)
+        c.points[i].normalImpulse = bundle.point[i].normalImpulse[lane];
+    const Real change = solveAngularFriction(a, b, c, omega);
+    for (int k = 0; k < 3; ++k) {
+        va.v[3 + k] = a.angularVelocity[k];
+        vb.v[3 + k] = b.angularVelocity[k];
+    }
+    return change;
+}
+
+// The normal block of each lane's manifold, as solveManifoldNormals solves it. In the lanes: a
+// manifold of one point, and the block whose last active set (the points carrying load) is the
+// one factored -- the first set solveNormalBlock tries, solved with the same factor; the
+// inactive rows of the embedded factor are the identity with a zero right-hand side, so they
+// stay zero. A lane whose set changed, or whose answer fails the set's checks, is solved alone.
+TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
+                                                  std::span<ContactConstraint> constraints,
+                                                  std::span<NormalFactor> factors,
+                                                  const SolverSettings& settings, Real bias,
+                                                  Real inverseH, Lane (&v)[2][6]) {
+    const Lane omega = splat(settings.relaxation);
+    const Lane biasH = splat(bias * inverseH);
+    Lane dv[3];
+    for (int k = 0; k < 3; ++k)
+        dv[k] = v[1][k] - v[0][k];
+    const Lane normalDv = dot(bundle.normal, dv);
+    Lane old[4];
+    Lane gap[4];  // v_n - target with the current impulses
+    for (int i = 0; i < 4; ++i) {
+        const Point& q = bundle.point[i];
+        old[i] = q.normalImpulse;
+        const Lane target = (q.targetBase + biasH * q.depth) - q.correction;
+        const Lane speed = (normalDv + dot(q.angularB, v[1] + 3)) - dot(q.angularA, v[0] + 3);
+        gap[i] = select(bundle.hasPoint[i], speed - target, Lane{});
+    }
+    const Lane* k = bundle.block;
+    Lane c[4];  // the gaps with no normal impulse
+    for (int i = 0; i < 4; ++i)
+        c[i] = gap[i] - (((k[4 * i] * old[0] + k[4 * i + 1] * old[1]) + k[4 * i + 2] * old[2]) +
+                         k[4 * i + 3] * old[3]);
+    LaneMask single{};
+    LaneMask fast{};
+    LaneMask active[4] = {};
+    bool alone[4] = {};
+    for (int lane = 0; lane < bundle.laneCount; ++lane) {
+        const int n = bundle.points[lane];
+        if (!bundle.normals[lane] || n == 0)
+            continue;
+        unsigned guess = 0;
+        for (int i = 0; i < n; ++i) {
+            if (old[i][lane] > 0)
+                guess |= 1u << i;
+        }
+        for (int i = 0; i < 4; ++i)
+            active[i][lane] = (guess >> i) & 1u ? -1 : 0;
+        single[lane] = n == 1 ? -1 : 0;
+        fast[lane] = n > 1 && (guess == 0 || guess == bundle.factorSet[lane]) ? -1 : 0;
+        alone[lane] = n > 1 && fast[lane] == 0;
+    }
+    Lane next[4] = {};
+    LaneMask update = single;
+    if (any(fast)) {
+        Lane x[4];
+        solveFactoredLanes(bundle.factor, c, active, x);
+        LaneMask ok;
+        checkActiveSetLanes(bundle.block, bundle.hasPoint, c, active, x, ok);
+        for (int lane = 0; lane < kWidth; ++lane)
+            alone[lane] = alone[lane] || (fast[lane] != 0 && ok[lane] == 0);
+        for (int i = 0; i < 4; ++i)
+            next[i] = positivePart(old[i] + omega * (x[i] - old[i]));
+        update |= fast & ok;
+    }
+    next[0] = select(single, positivePart(old[0] - (omega * bundle.point[0].normalMass) * gap[0]),
+                     next[0]);
+    Lane delta[4];
+    for (int i = 0; i < 4; ++i) {
+        delta[i] = select(update, next[i] - old[i], Lane{});
+        Point& q = bundle.point[i];
+        for (int j = 0; j < 3; ++j) {
+            v[0][j] -= (bundle.inverseMassA * delta[i]) * bundle.normal[j];
+            v[0][3 + j] -= delta[i] * q.impulseA[j];
+            v[1][j] += (bundle.inverseMassB * delta[i]) * bundle.normal[j];
+            v[1][3 + j] += delta[i] * q.impulseB[j];
+        }
+        q.normalImpulse = select(update, next[i], old[i]);
+    }
+    scatter(bundle, v);
+    Real largestChange = 0;
+    if (settings.tolerance > 0) {
+        for (int i = 0; i < 4; ++i) {
+            const Lane change =
+                ((k[4 * i] * delta[0] + k[4 * i + 1] * delta[1]) + k[4 * i + 2] * delta[2]) +
+                k[4 * i + 3] * delta[3];
+            largestChange = std::max(largestChange, largestLane(absolute(change)));
+        }
+    }
+    for (int lane = 0; lane < bundle.laneCount; ++lane) {
+        if (alone[lane]) {
+            const std::uint32_t index = bundle.constraint[lane];
+            largestChange = std::max(
+                largestChange, solveNormalsAlone(bundle, lane, constraints[index], factors[index],
+                                                 settings, bias, inverseH));
+        }
+    }
+    return largestChange;
+}
+
+Real ContactRows::solveNormalsAlone(Bundle& bundle, int lane, ContactConstraint& c,
+                                    NormalFactor& factor, const SolverSettings& settings, Real bias,
+                                    Real inverseH) {
+    SolverBody a;
+    SolverBody b;
+    Velocity& va = velocities_[c.bodyA];
+    Velocity& vb = velocities_[c.bodyB];
+    a.linearVelocity = Vec3(va.v[0], va.v[1], va.v[2]);
+    a.angularVelocity = Vec3(va.v[3], va.v[4], va.v[5]);
+    a.inverseMass = bundle.inverseMassA[lane];
+    b.linearVelocity = Vec3(vb.v[0], vb.v[1], vb.v[2]);
+    b.angularVelocity = Vec3(vb.v[3], vb.v[4], vb.v[5]);
+    b.inverseMass = bundle.inverseMassB[lane];
+    for (int i = 0; i < c.pointCount; ++i)
+        c.points[i].normalImpulse = bundle.point[i].normalImpulse[lane];
+    Real change = 0;
+    solveManifoldNormals(a, b, c, factor, settings, inverseH, bias, change);
+    for (int k = 0; k < 3; ++k) {
+        va.v[k] = a.linearVelocity[k];
+        va.v[3 + k] = a.angularVelocity[k];
+        vb.v[k] = b.linearVelocity[k];
+        vb.v[3 + k] = b.angularVelocity[k];
+    }
+    for (int i = 0; i < c.pointCount; ++i)
+        bundle.point[i].normalImpulse[lane] = c.points[i].normalImpulse;
+    // The factor it cached, embedded in the identity.
+    for (int e = 0; e < 16; ++e)
+        bundle.factor[e][lane] = e % 5 == 0 ? 1 : 0;
+    bundle.factorSet[lane] = factor.set;
+    if (factor.set != NormalFactor::kNone) {
+        for (int i = 0; i < factor.size; ++i) {
+            for (int j = 0; j <= i; ++j)
+                bundle.factor[4 * factor.rows[i] + factor.rows[j]][lane] = factor.l[i][j];
+        }
+    }
+    return change;
+}
+
+}  // namespace tumble
