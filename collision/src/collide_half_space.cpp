@@ -19,8 +19,9 @@ namespace {
 
 /// Below this sine of the angle between a cylinder's axis and the plane normal, the cylinder
 /// stands flat: its rim points are taken at fixed angles, so they do not spin with the direction
-/// of a vanishing tilt. The deepest rim point may then be missed by at most
-/// radius * sine * (1 - cos 45 deg), i.e. 0.3 mm for a 1 m radius.
+/// of a vanishing tilt. They may miss the deepest rim point by radius * sine * (1 - cos 45 deg)
+/// (0.3 mm for a 1 m radius), so that point is offered too: the reduction keeps it only when it
+/// is more than kDepthTolerance deeper than all four (issue 20: the depth within 1e-6 m).
 constexpr Real kFlatSine = 1e-3;
 
 /// The half-space's boundary in world coordinates: points x with normal . x = offset; the solid
@@ -76,10 +77,10 @@ private:
 };
 
 /// Flat (axis within kFlatSine of the normal): four rim points of the lower cap at fixed angles,
-/// ids 0-3. Tilted: on each cap the deepest rim point and those at +90, 180 and -90 degrees from
-/// it, ids 4 + 4 * cap + k (cap 0 at -z); the deepest ones alone within the margin when the
-/// cylinder leans on its rim, all on the lower cap as it comes to stand, both deepest when it
-/// lies on its side.
+/// ids 0-3, and its deepest rim point, id 12, when the axis is tilted at all. Tilted: on each cap
+/// the deepest rim point and those at +90, 180 and -90 degrees from it, ids 4 + 4 * cap + k (cap 0
+/// at -z); the deepest ones alone within the margin when the cylinder leans on its rim, all on the
+/// lower cap as it comes to stand, both deepest when it lies on its side.
 void addCylinder(const Cylinder& cylinder, const Transform& pose, const Plane& plane, Real margin,
                  Candidates& candidates) {
     const Vec3 down = pose.rotation.conjugate() * (-plane.normal);  // local
@@ -92,6 +93,10 @@ void addCylinder(const Cylinder& cylinder, const Transform& pose, const Plane& p
         const std::array<Vec3, 4> rim{x, y, -x, -y};
         for (std::size_t k = 0; k < 4; ++k)
             candidates.offer(cap + cylinder.radius * rim[k], margin, static_cast<std::uint32_t>(k));
+        if (tilt > 0) {
+            const Vec3 deepest = pose.rotation * Vec3(down.x() / tilt, down.y() / tilt, 0);
+            candidates.offer(cap + cylinder.radius * deepest, margin, 12);
+        }
         return;
     }
     const Vec3 deepest = pose.rotation * Vec3(down.x() / tilt, down.y() / tilt, 0);
