@@ -229,5 +229,58 @@ TEST(FaceTouch, EveryConvexShapeOnHullFacesAndHalfSpaces) {
     sweep(Ground::HalfSpace);
 }
 
+/// Small shapes resting on a standing cylinder's top cap, their lowest point anywhere over the
+/// disc up to 1 mm from the rim (half the time in the band between the rim and the inscribed
+/// 16-gon, which the clipping against the cap's polygon cut away), touching and 0.1 mm in, tilted
+/// up to 2 degrees: the cap's normal, and the lowest point's depth within 1e-6 m.
+TEST(FaceTouch, SmallShapesOnACylinderCapAnywhereOverTheDisc) {
+    const Cylinder cylinder{0.25, 0.3};
+    const Real r = cylinder.radius, chord = r * std::cos(kPi / 16);
+    const Transform cylinderPose{Vec3(0.3, -0.2, 0.1), about(Vec3(1, -2, 0.5), 0.4)};
+    const Vec3 up = cylinderPose.rotation * Vec3::UnitZ();
+    const Vec3 top = cylinderPose.apply(Vec3(0, 0, cylinder.halfLength));
+    const std::vector<Vec3> hullPoints = {Vec3(0.06, 0, -0.02), Vec3(-0.04, 0.05, -0.03),
+                                          Vec3(-0.03, -0.04, -0.04), Vec3(0.01, 0.01, 0.06),
+                                          Vec3(0.02, -0.05, 0.02)};
+    const std::vector<Candidate> small = {
+        {"box", Box{Vec3(0.06, 0.04, 0.03)}, Quat::Identity()},
+        {"hull", ConvexHull::fromPoints(hullPoints), about(Vec3(1, 2, 3), 0.7)},
+        {"capsule lying", Capsule{0.03, 0.05}, about(Vec3::UnitX(), kPi / 2)},
+        {"cylinder standing", Cylinder{0.05, 0.04}, Quat::Identity()},
+    };
+    std::mt19937_64 rng(26);
+    std::uniform_real_distribution<Real> unit(-1, 1);
+    Tally tally;
+    const Face cap{up, top, Vec3::Zero(), Vec3::Zero(), r, r};
+    for (const Candidate& candidate : small) {
+        for (int placed = 0; placed < 1000; ++placed) {
+            const Real tilt = 2 * kDegree * std::abs(unit(rng));
+            const Quat rotation =
+                (cylinderPose.rotation *
+                 about(Vec3(unit(rng), unit(rng), 0) + 1e-9 * Vec3::UnitX(), tilt) *
+                 about(Vec3::UnitZ(), kPi * unit(rng)) * candidate.base)
+                    .normalized();
+            // 1 mm inside the rim at most: nearer, the shape could escape sideways by less than its
+            // depth.
+            const Real inner = r - 1e-3;
+            const Real radius = placed % 2 == 0 ? chord + (inner - chord) * std::abs(unit(rng))
+                                                : inner * std::sqrt(std::abs(unit(rng)));
+            const Real azimuth = kPi * unit(rng);
+            const Vec3 spot = cylinderPose.apply(
+                Vec3(radius * std::cos(azimuth), radius * std::sin(azimuth), cylinder.halfLength));
+            const Vec3 low = rotation * support(candidate.shape, rotation.conjugate() * Vec3(-up));
+            for (const Real depth : {0.0, 1e-4})
+                check(candidate, {spot - low - depth * up, rotation}, cylinder, cylinderPose, cap,
+                      depth, tally);
+        }
+    }
+    std::printf(
+        "small shapes on a cylinder cap: %d wrong of %d, worst depth error %.3g m, "
+        "normal %.3g deg\n",
+        tally.wrong, tally.contacts, tally.worstDepth,
+        std::acos(std::min<Real>(1, tally.worstCos)) / kDegree);
+    EXPECT_EQ(tally.wrong, 0);
+}
+
 }  // namespace
 }  // namespace tumble
