@@ -360,7 +360,7 @@ void lowestOfDisc(const Feature& reference, const Disc& disc, Lowest& lowest) {
 /// A cap is a polygon inscribed in its rim, so clipping misses contact between its sides and the
 /// rim (a band up to r (1 - cos(pi / kCapVertexCount)) wide), whether the cap is the reference or
 /// the incident feature. The lowest incident point over the reference, found on the true disc,
-/// joins the manifold when it is more than kDepthTolerance deeper than the clipped points, and
+/// joins the manifold when it is more than kCapDepthTolerance deeper than the clipped points, and
 /// the reduction keeps it (issue 20: the depth within 1e-6 m).
 void addLowestOnDisc(const Feature& reference, const Feature& incident, bool referenceIsA,
                      Manifold& out) {
@@ -380,7 +380,7 @@ void addLowestOnDisc(const Feature& reference, const Feature& incident, bool ref
         points[static_cast<std::size_t>(i)] = out.points[static_cast<std::size_t>(i)];
         deepestKept = std::min(deepestKept, out.points[static_cast<std::size_t>(i)].separation);
     }
-    if (!(separation < deepestKept - kDepthTolerance))
+    if (!(separation < deepestKept - kCapDepthTolerance))
         return;
     const std::uint32_t owner = referenceIsA ? 0u : 1u << 31;
     points[static_cast<std::size_t>(out.pointCount)] = {
@@ -389,7 +389,7 @@ void addLowestOnDisc(const Feature& reference, const Feature& incident, bool ref
     const Vec3 normal = out.normal;
     reduceContacts(
         std::span<const ContactPoint>(points.data(), static_cast<std::size_t>(out.pointCount) + 1),
-        normal, out);
+        normal, out, false, kCapDepthTolerance);
 }
 
 }  // namespace
@@ -426,7 +426,8 @@ void collideConvex(const Shape& a, const Transform& poseA, const Shape& b, const
     clipToManifold(face,
                    std::span<const ClipVertex>(incidentVertices.data(),
                                                static_cast<std::size_t>(incident.count)),
-                   referenceIsA, margin, out, capPair ? &contact.normal : nullptr);
+                   referenceIsA, margin, out, capPair ? &contact.normal : nullptr,
+                   capPair ? kCapDepthTolerance : kDepthTolerance);
     // Clipping can lose a grazing contact to rounding at the side planes; keep the witness pair.
     if (out.pointCount == 0)
         return addSinglePoint(contact, featureA, featureB, out);
