@@ -2,7 +2,7 @@
 // to at most four points. Everything here works in fixed-size arrays: no allocation.
 //
 // Determinism and id stability: vertices are visited in the order given, and every tie (equal
-// depth within kDepthTolerance, equal area within kAreaTieFraction) goes to the earlier
+// depth within the reduction's band, equal area within kAreaTieFraction) goes to the earlier
 // candidate, so the same configuration always yields the same points in the same order.
 
 #include "clipping.h"
@@ -138,7 +138,8 @@ std::uint32_t pointId(bool referenceIsA, std::uint32_t referenceFeature, const P
 }  // namespace
 
 void clipToManifold(const ReferenceFace& reference, std::span<const ClipVertex> incident,
-                    bool referenceIsA, Real margin, Manifold& out, const Vec3* contactNormal) {
+                    bool referenceIsA, Real margin, Manifold& out, const Vec3* contactNormal,
+                    Real depthTolerance) {
     out.clear();
     out.normal = contactNormal != nullptr
                      ? *contactNormal
@@ -192,7 +193,7 @@ void clipToManifold(const ReferenceFace& reference, std::span<const ClipVertex> 
     // Every kept point lies on the boundary of the incident polygon clipped so far, in order,
     // so the candidates are a convex polygon in boundary order.
     reduceContacts(std::span<const ContactPoint>(candidates.data(), candidateCount), out.normal,
-                   out, true);
+                   out, true, depthTolerance);
 }
 
 namespace {
@@ -312,7 +313,7 @@ Choice reduceGreedy(const Point2* points, const bool* deepest, int count) {
 }  // namespace
 
 void reduceContacts(std::span<const ContactPoint> candidates, const Vec3& normal, Manifold& out,
-                    bool convexPolygon) {
+                    bool convexPolygon, Real depthTolerance) {
     out.clear();
     out.normal = normal;
     const int count = static_cast<int>(std::min<std::size_t>(candidates.size(), kMaxClipVertices));
@@ -335,7 +336,7 @@ void reduceContacts(std::span<const ContactPoint> candidates, const Vec3& normal
     }
     for (int i = 0; i < count; ++i)
         deepest[static_cast<std::size_t>(i)] =
-            candidates[static_cast<std::size_t>(i)].separation <= minSeparation + kDepthTolerance;
+            candidates[static_cast<std::size_t>(i)].separation <= minSeparation + depthTolerance;
     const Choice chosen = count <= kExactReduceLimit
                               ? reduceExact(points.data(), deepest.data(), count, convexPolygon)
                               : reduceGreedy(points.data(), deepest.data(), count);

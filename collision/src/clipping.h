@@ -29,6 +29,19 @@ struct ClipVertex {
 /// Largest polygon the clipper handles (incident vertices plus one per reference side).
 constexpr int kMaxClipVertices = 64;
 
+/// Candidates within this of the deepest separation count as equally deep in reduceContacts (m).
+/// Wide enough that flush faces (boxes, hulls) whose points differ in depth by solver noise keep
+/// the same 4 points, and ids, from step to step, so piles settle and sleep; their clipped points
+/// are exact, and the reduction loses at most this of their depth only on faces tilted into the
+/// contact.
+constexpr Real kDepthTolerance = 1e-4;
+
+/// The band where a cylinder's cap or rim takes part (m): half of issue 20's 1e-6 m depth bound.
+/// A tilted cap (a polygon of up to 17 points, plus its exact deepest rim point) lost that point
+/// to a wider set 9.95e-5 m shallower under kDepthTolerance. Used for boxes and hulls too, it kept
+/// their flush piles awake: the deepest point, a solver-noise 1e-6 m lower, swapped in and out.
+constexpr Real kCapDepthTolerance = 5e-7;
+
 struct ReferenceFace {
     std::span<const Vec3> vertices;  ///< world, counter-clockwise seen from outside (along normal)
     Vec3 normal = Vec3::UnitZ();     ///< world, outward, unit
@@ -56,19 +69,17 @@ struct ReferenceFace {
 /// manifold normal: each point's separation is then its distance to the reference plane along
 /// that normal, and its position is midway along it. A caller whose reference face is a few
 /// degrees off the true contact normal keeps the true normal (and the true depth) this way. The
-/// reference normal must then make an angle well below 90 degrees with it.
+/// reference normal must then make an angle well below 90 degrees with it. `depthTolerance` is
+/// reduceContacts' band.
 void clipToManifold(const ReferenceFace& reference, std::span<const ClipVertex> incident,
                     bool referenceIsA, Real margin, Manifold& out,
-                    const Vec3* contactNormal = nullptr);
+                    const Vec3* contactNormal = nullptr, Real depthTolerance = kDepthTolerance);
 
 /// How far outside a reference side plane an incident vertex may lie and still be kept (m).
 constexpr Real kClipTolerance = 1e-5;
 
-/// Candidates within this of the deepest separation count as equally deep in reduceContacts (m).
-constexpr Real kDepthTolerance = 1e-4;
-
 /// Writes into `out` (normal set to `normal`) at most 4 of `candidates`: all when there are at
-/// most 4; otherwise a deepest candidate (any within kDepthTolerance of the minimum separation)
+/// most 4; otherwise a deepest candidate (any within `depthTolerance` of the minimum separation)
 /// plus those that make the largest contact area, measured in the plane perpendicular to
 /// `normal`. Up to kExactReduceLimit candidates every 4-subset is tried (exact); beyond, a greedy
 /// choice (deepest, farthest from it, largest triangle, largest quadrilateral) improved by
@@ -80,7 +91,7 @@ constexpr Real kDepthTolerance = 1e-4;
 /// order (as clipping produces): the hull of 4 of them is then the quadrilateral they form in
 /// that order, and the exact search costs one cross product per subset instead of seven.
 void reduceContacts(std::span<const ContactPoint> candidates, const Vec3& normal, Manifold& out,
-                    bool convexPolygon = false);
+                    bool convexPolygon = false, Real depthTolerance = kDepthTolerance);
 
 /// Candidate count up to which reduceContacts searches every 4-subset.
 constexpr int kExactReduceLimit = 8;

@@ -9,14 +9,17 @@
 /// single point. When a face lies within kFaceCos of the normal (kCapCos when a cylinder cap
 /// takes part), the better aligned face is the reference and the other feature is clipped
 /// against it (clipToManifold); otherwise the contact is the single pair of witness points
-/// (edge-edge, a rim or a sphere touching anything).
+/// (edge-edge, a rim or a sphere touching anything). Where a cap takes part in the clipping, the
+/// lowest point found on its true disc joins the clipped points (addLowestOnDisc).
 ///
 /// Feature ids: vertex ids are fixed per shape (box corner by its signs, hull vertex index,
 /// cylinder rim vertex index, segment end), and face ids are the face index, so the ids stay the
 /// same while the same features touch.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "ccd_adapter.h"
@@ -60,11 +63,13 @@ struct Feature {
     std::array<Vec3, kMaxClipVertices> vertices;
     std::array<std::uint32_t, kMaxClipVertices> ids{};
     int count = 0;
-    bool isFace = false;          ///< a polygon of >= 3 vertices, counter-clockwise from outside
-    bool isCap = false;           ///< a cylinder cap
-    Vec3 normal = Vec3::UnitZ();  ///< outward face normal (world), when isFace
-    Real alignment = -1;          ///< normal . direction, when isFace
-    std::uint32_t id = 0;         ///< face (or feature) id on its shape
+    bool isFace = false;            ///< a polygon of >= 3 vertices, counter-clockwise from outside
+    bool isCap = false;             ///< a cylinder cap
+    Vec3 capCenter = Vec3::Zero();  ///< world, when isCap
+    Real capRadius = 0;             ///< (m), when isCap
+    Vec3 normal = Vec3::UnitZ();    ///< outward face normal (world), when isFace
+    Real alignment = -1;            ///< normal . direction, when isFace
+    std::uint32_t id = 0;           ///< face (or feature) id on its shape
 
     void add(const Transform& pose, const Vec3& local, std::uint32_t vertexId) {
         vertices[static_cast<std::size_t>(count)] = pose.apply(local);
@@ -142,6 +147,8 @@ void capFeature(const Cylinder& cylinder, const Transform& pose, const Vec3& d, 
     }
     f.setFace(pose, Vec3(0, 0, top ? 1 : -1), d, top ? 0 : 1);
     f.isCap = true;
+    f.capCenter = pose.apply(Vec3(0, 0, top ? h : -h));
+    f.capRadius = r;
 }
 
 /// Cap polygon, side line or rim point. Ids: top rim vertices 0..15, bottom 16..31, side line
@@ -219,6 +226,172 @@ void addSinglePoint(const ConvexContact& contact, const Feature& a, const Featur
     out.add(0.5 * (contact.pointA + contact.pointB), contact.separation, id);
 }
 
+/// A clipped point's id never has 0x7FF in both edge labels (clipToManifold), so this names the
+/// deepest point within a cap's disc.
+constexpr std::uint32_t kDiscPointLabels = 0x7FFu << 11 | 0x7FFu;
+
+using Point2 = Eigen::Matrix<Real, 2, 1>;
+
+Real cross2(const Point2& a, const Point2& b) {
+    return a.x() * b.y() - a.y() * b.x();
+}
+
+/// The lowest of the points offered, by height along a reference face's normal.
+struct Lowest {
+    Vec3 normal, origin;  ///< the reference plane: outward unit normal, a point on it
+    Vec3 point = Vec3::Zero();
+    Real height = std::numeric_limits<Real>::infinity();
+
+    void consider(const Vec3& p) {
+        if (normal.dot(p - origin) < height) {
+            height = normal.dot(p - origin);
+            point = p;
+        }
+    }
+    bool found() const { return height < std::numeric_limits<Real>::infinity(); }
+};
+
+/// A cap's disc: centre, axis (its outward normal), radius and two axes in its plane.
+struct Disc {
+    Vec3 center, axis, e1, e2;
+    Real radius;
+
+    explicit Disc(const Feature& cap)
+        : center(cap.capCenter),
+          axis(cap.normal),
+          e1(cap.normal.unitOrthogonal()),
+          e2(cap.normal.cross(e1)),
+          radius(cap.capRadius) {}
+    /// A point's coordinates in the disc's plane, projected along the axis.
+    Point2 at(const Vec3& p) const { return {e1.dot(p - center), e2.dot(p - center)}; }
+    Vec3 rim(Real angle) const {
+        return center + radius * (std::cos(angle) * e1 + std::sin(angle) * e2);
+    }
+};
+
+/// The outward normal of a face's side k: the plane through its edge k, across the face.
+Vec3 sideNormal(const Feature& face, int k) {
+    const Vec3& from = face.vertices[static_cast<std::size_t>(k)];
+    const Vec3& to = face.vertices[static_cast<std::size_t>((k + 1) % face.count)];
+    return (to - from).cross(face.normal).normalized();
+}
+
+/// Cap as reference: the incident feature's lowest point over the true disc -- a vertex over it,
+/// an edge's crossing of its rim, or the rim point down the incident face's slope when the face
+/// covers it.
+void lowestOverDisc(const Disc& disc, const Feature& incident, Lowest& lowest) {
+    const int n = incident.count;
+    const Real r2 = disc.radius * disc.radius;
+    Real turn = 0;  // twice the projected polygon's signed area, for the inside test below
+    for (int i = 0; i < (n == 2 ? 1 : n); ++i) {
+        const Vec3& a = incident.vertices[static_cast<std::size_t>(i)];
+        const Vec3& b = incident.vertices[static_cast<std::size_t>((i + 1) % n)];
+        const Point2 qa = disc.at(a), d = disc.at(b) - qa;
+        turn += cross2(qa, qa + d);
+        for (const Vec3* end : {&a, &b})
+            if (disc.at(*end).squaredNorm() <= r2)
+                lowest.consider(*end);
+        // |qa + t d| = r: t^2 d.d + 2 t qa.d + qa.qa - r^2 = 0; the roots within the edge.
+        const Real dd = d.squaredNorm(), qd = qa.dot(d);
+        const Real discriminant = qd * qd - dd * (qa.squaredNorm() - r2);
+        if (dd > 0 && discriminant >= 0)
+            for (const Real root : {-std::sqrt(discriminant), std::sqrt(discriminant)})
+                if (const Real t = (-qd + root) / dd; t >= 0 && t <= 1)
+                    lowest.consider(a + t * (b - a));
+    }
+    const Vec3& m = incident.normal;
+    const Real mn = m.dot(disc.axis);
+    if (n < 3 || !incident.isFace || std::abs(mn) <= kSegmentSin)
+        return;
+    // On the face's plane the height over the disc grows along `slope`.
+    const Point2 slope(-m.dot(disc.e1) / mn, -m.dot(disc.e2) / mn);
+    if (!(slope.squaredNorm() > 0))
+        return;
+    const Point2 x = -disc.radius * slope.normalized();
+    for (int i = 0; i < n; ++i) {
+        const Point2 qa = disc.at(incident.vertices[static_cast<std::size_t>(i)]);
+        const Point2 qb = disc.at(incident.vertices[static_cast<std::size_t>((i + 1) % n)]);
+        if (turn * cross2(qb - qa, x - qa) < 0)
+            return;  // the face does not cover that rim point
+    }
+    const Vec3 onPlane = disc.center + x.x() * disc.e1 + x.y() * disc.e2;
+    lowest.consider(onPlane + (m.dot(incident.vertices[0] - onPlane) / mn) * disc.axis);
+}
+
+/// Cap as incident: the disc's lowest point within the reference face's side planes -- its
+/// lowest rim point, a rim crossing of a side plane, or a reference corner's foot on the disc.
+void lowestOfDisc(const Feature& reference, const Disc& disc, Lowest& lowest) {
+    const int n = reference.count;
+    auto inside = [&](const Vec3& x) {
+        for (int k = 0; k < n; ++k)
+            if (sideNormal(reference, k).dot(x - reference.vertices[static_cast<std::size_t>(k)]) >
+                kClipTolerance)
+                return false;
+        return true;
+    };
+    const Vec3& normal = reference.normal;
+    const Point2 down(-normal.dot(disc.e1), -normal.dot(disc.e2));  // downhill, in the disc
+    if (down.squaredNorm() > 0) {
+        const Vec3 x = disc.rim(std::atan2(down.y(), down.x()));
+        if (inside(x))
+            lowest.consider(x);
+    }
+    const Real along = disc.axis.dot(normal);
+    for (int k = 0; k < n; ++k) {
+        const Vec3& v = reference.vertices[static_cast<std::size_t>(k)];
+        if (std::abs(along) > kSegmentSin) {
+            const Vec3 foot = v + (disc.axis.dot(disc.center - v) / along) * normal;
+            if ((foot - disc.center).squaredNorm() <= disc.radius * disc.radius)
+                lowest.consider(foot);
+        }
+        // The rim at angle t crosses side k where A cos t + B sin t = C.
+        const Vec3 side = sideNormal(reference, k);
+        const Real a = disc.radius * side.dot(disc.e1), b = disc.radius * side.dot(disc.e2);
+        const Real c = side.dot(v - disc.center), size = std::hypot(a, b);
+        if (!(size > 0) || std::abs(c) > size)
+            continue;
+        const Real phase = std::atan2(b, a), spread = std::acos(c / size);
+        for (const Real angle : {phase - spread, phase + spread})
+            if (const Vec3 x = disc.rim(angle); inside(x))
+                lowest.consider(x);
+    }
+}
+
+/// A cap is a polygon inscribed in its rim, so clipping misses contact between its sides and the
+/// rim (a band up to r (1 - cos(pi / kCapVertexCount)) wide), whether the cap is the reference or
+/// the incident feature. The lowest incident point over the reference, found on the true disc,
+/// joins the manifold when it is more than kCapDepthTolerance deeper than the clipped points, and
+/// the reduction keeps it (issue 20: the depth within 1e-6 m).
+void addLowestOnDisc(const Feature& reference, const Feature& incident, bool referenceIsA,
+                     Manifold& out) {
+    Lowest lowest{reference.normal, reference.vertices[0]};
+    if (reference.isCap)
+        lowestOverDisc(Disc(reference), incident, lowest);
+    else if (incident.isCap)
+        lowestOfDisc(reference, Disc(incident), lowest);
+    const Vec3 outward = referenceIsA ? out.normal : Vec3(-out.normal);
+    const Real cosine = reference.normal.dot(outward);
+    if (!lowest.found() || !(cosine > 0))
+        return;
+    const Real separation = lowest.height / cosine;
+    std::array<ContactPoint, Manifold::kMaxPoints + 1> points;
+    Real deepestKept = std::numeric_limits<Real>::infinity();
+    for (int i = 0; i < out.pointCount; ++i) {
+        points[static_cast<std::size_t>(i)] = out.points[static_cast<std::size_t>(i)];
+        deepestKept = std::min(deepestKept, out.points[static_cast<std::size_t>(i)].separation);
+    }
+    if (!(separation < deepestKept - kCapDepthTolerance))
+        return;
+    const std::uint32_t owner = referenceIsA ? 0u : 1u << 31;
+    points[static_cast<std::size_t>(out.pointCount)] = {
+        lowest.point - (separation / 2) * outward, separation,
+        owner | (reference.id % 511) << 22 | kDiscPointLabels};
+    const Vec3 normal = out.normal;
+    reduceContacts(
+        std::span<const ContactPoint>(points.data(), static_cast<std::size_t>(out.pointCount) + 1),
+        normal, out, false, kCapDepthTolerance);
+}
+
 }  // namespace
 
 void collideConvex(const Shape& a, const Transform& poseA, const Shape& b, const Transform& poseB,
@@ -253,10 +426,13 @@ void collideConvex(const Shape& a, const Transform& poseA, const Shape& b, const
     clipToManifold(face,
                    std::span<const ClipVertex>(incidentVertices.data(),
                                                static_cast<std::size_t>(incident.count)),
-                   referenceIsA, margin, out, capPair ? &contact.normal : nullptr);
+                   referenceIsA, margin, out, capPair ? &contact.normal : nullptr,
+                   capPair ? kCapDepthTolerance : kDepthTolerance);
     // Clipping can lose a grazing contact to rounding at the side planes; keep the witness pair.
     if (out.pointCount == 0)
-        addSinglePoint(contact, featureA, featureB, out);
+        return addSinglePoint(contact, featureA, featureB, out);
+    if (reference.isCap || incident.isCap)
+        addLowestOnDisc(reference, incident, referenceIsA, out);
 }
 
 }  // namespace tumble::detail

@@ -520,6 +520,44 @@ TEST(NarrowphaseFeatureIds, RestingBoxKeepsIdsUnderJitter) {
     }
 }
 
+// A body settling in a pile rocks by ~1e-5 rad: its flush face's points then differ in depth by
+// ~1e-5 m. A face of more than 4 points (a twisted box's octagon, a hexagonal hull face) must keep
+// the same 4, or the contact ids flip step to step and the pile never sleeps (soak.pile-sleeps).
+TEST(NarrowphaseFeatureIds, FlushFacesOfManyPointsKeepIdsWhileRocking) {
+    const Shape box = Box{};
+    const Shape ground = HalfSpace{};
+    std::vector<Vec3> prism;
+    for (int k = 0; k < 6; ++k)
+        for (const Real z : {-0.25, 0.25})
+            prism.emplace_back(0.5 * std::cos(kPi * k / 3), 0.5 * std::sin(kPi * k / 3), z);
+    const Shape hull = ConvexHull::fromPoints(prism);
+    const Quat twist = about(Vec3::UnitZ(), 0.35);
+    struct Pair {
+        const Shape& a;
+        Transform poseA;
+        const Shape& b;
+        Transform poseB;
+    };
+    const std::array<Pair, 3> pairs{{{box, at(Vec3::Zero()), box, at(Vec3(0, 0, 1), twist)},
+                                     {hull, at(Vec3(0, 0, 0.25)), ground, at(Vec3::Zero())},
+                                     {box, at(Vec3::Zero()), hull, at(Vec3(0, 0, 0.75))}}};
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<Real> uniform(-1, 1);
+    for (const Pair& pair : pairs) {
+        const std::vector<std::uint32_t> resting =
+            sortedIds(collided(pair.a, pair.poseA, pair.b, pair.poseB));
+        ASSERT_EQ(resting.size(), 4u);
+        int flips = 0;
+        for (int i = 0; i < 200; ++i) {
+            const Quat rock(Eigen::AngleAxis<Real>(
+                1e-5, Vec3(uniform(rng), uniform(rng), uniform(rng)).normalized()));
+            const Transform rocked{pair.poseA.position, rock * pair.poseA.rotation};
+            flips += sortedIds(collided(pair.a, rocked, pair.b, pair.poseB)) != resting;
+        }
+        EXPECT_EQ(flips, 0) << "pair " << (&pair - pairs.data());
+    }
+}
+
 // --- Dispatch: swapped order
 // ----------------------------------------------------------------------
 
