@@ -56,11 +56,15 @@ public:
         bodies_.insert(bodies_.end(), lumped.nodes.begin(), lumped.nodes.end());
         return first;
     }
-    // Tumble's mesh shapes are built on another branch (issue 26); these two are what that merge
-    // replaces, with the terrain's HeightFieldData and TriangleMeshData as they are.
-    bool addHeightField(const HeightFieldData& /*field*/) override { return false; }
-    bool addTriangleMesh(const TriangleMeshData& /*mesh*/) override { return false; }
-    std::string terrainRefusal() const override { return "not supported yet (no mesh shapes)"; }
+    // Both at the origin: Tumble's height field already puts sample (i, j) at (i dx, j dy, h).
+    bool addHeightField(const HeightFieldData& field) override {
+        addStatic(HeightField::fromData(field));
+        return true;
+    }
+    bool addTriangleMesh(const TriangleMeshData& mesh) override {
+        addStatic(TriangleMesh::fromData(mesh));
+        return true;
+    }
     void step() override { world_.step(); }
     const World& world() const { return world_; }
     Vec3 position(int body) const override { return world_.position(bodies_[body]); }
@@ -80,6 +84,10 @@ private:
         else if (s.correction == SceneSettings::Correction::SplitImpulse)
             def.solver.stabilisation = Stabilisation::SplitImpulse;
         return def;
+    }
+    void addStatic(const Shape& shape) {
+        const BodyId body = world_.createBody(BodyDef{.type = BodyType::Static});
+        world_.createShape(body, ShapeDef{.geometry = shape, .material = material(1)});
     }
     int add(const BodyDef& def, const Shape& shape, Real density) {
         const BodyId body = world_.createBody(def);

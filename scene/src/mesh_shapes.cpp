@@ -5,18 +5,32 @@
 #include <filesystem>
 
 #include "scene_parts.h"
+#include "tumble/collision/mesh_shape.h"
 #include "tumble/scene/mesh_io.h"
 
 namespace tumble::cli {
 
-// The one place a mesh or height field becomes a Shape. This version has no mesh shapes (issue
-// 26: they are built on another branch); these two functions are what that merge replaces.
-Shape meshShape(TriangleMeshData /*mesh*/, const std::string& path) {
-    failAt(path, "mesh shapes are not built in this version (the mesh was read and checked)");
+// The one place a mesh or height field becomes a Shape. The loaders already dropped the
+// triangles they saw as degenerate; fromData may drop more by its own (area) rule, so those are
+// reported too.
+Shape meshShape(const TriangleMeshData& mesh, const ShapeSource& source, const std::string& path) {
+    try {
+        TriangleMesh shape = TriangleMesh::fromData(mesh);
+        if (source.warnings != nullptr && shape.data->droppedTriangles > 0)
+            source.warnings->push_back(path + ": dropped " +
+                                       std::to_string(shape.data->droppedTriangles) +
+                                       " degenerate triangles");
+        return shape;
+    } catch (const InvalidArgument& e) {
+        failAt(path, e.what());
+    }
 }
-Shape heightFieldShape(HeightFieldData /*field*/, const std::string& path) {
-    failAt(path, "height-field shapes are not built in this version (the heights were read and ",
-           "checked)");
+Shape heightFieldShape(const HeightFieldData& field, const std::string& path) {
+    try {
+        return HeightField::fromData(field);
+    } catch (const InvalidArgument& e) {
+        failAt(path, e.what());
+    }
 }
 
 namespace {

@@ -67,7 +67,7 @@ WorldDef parseWorld(JsonObject o) {
 
 Shape parseGeometry(JsonObject& o, const std::string& type, const ShapeSource& source) {
     if (type == "mesh")
-        return meshShape(parseMeshData(o, source), o.path());
+        return meshShape(parseMeshData(o, source), source, o.path());
     if (type == "heightField")
         return heightFieldShape(parseHeightFieldData(o, source), o.path());
     if (type == "sphere")

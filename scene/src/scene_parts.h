@@ -46,9 +46,10 @@ TriangleMeshData parseMeshData(JsonObject& o, const ShapeSource& source);
 /// A "heightField" shape's geometry: "heights" (rows) and "spacing", or "file" (a PNG),
 /// "spacing", "heightScale", "heightOffset".
 HeightFieldData parseHeightFieldData(JsonObject& o, const ShapeSource& source);
-/// The Shape of checked mesh data; refused at `path` while this version has no mesh shapes.
-Shape meshShape(TriangleMeshData mesh, const std::string& path);
-Shape heightFieldShape(HeightFieldData field, const std::string& path);
+/// The Shape of checked mesh data; a refusal is re-thrown at `path`, dropped degenerate triangles
+/// go to `source.warnings`.
+Shape meshShape(const TriangleMeshData& mesh, const ShapeSource& source, const std::string& path);
+Shape heightFieldShape(const HeightFieldData& field, const std::string& path);
 
 /// Appends the bodies of one generator ("stack", "pyramid", "wall", "grid", "string", "net")
 /// to scene.bodies (and a string's or net's description to scene.lumped).

@@ -40,7 +40,7 @@ TEST(Command, HelpAndVersionExitZeroAndUnknownOptionsTwo) {
 TEST(Command, EveryBuiltInSceneRunsHeadless) {
     const std::string dir = tumble::cli::sceneDirectory();
     const std::vector<std::string> names = tumble::cli::builtinScenes(dir);
-    ASSERT_GE(names.size(), 13u);
+    ASSERT_GE(names.size(), 16u);
     for (const std::string& name : names) {
         const Outcome o = tumbleRun({"run", name, "--time", "0.25", "--quiet"});
         EXPECT_EQ(o.status, 0) << name << ": " << o.err;
