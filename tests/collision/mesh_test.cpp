@@ -260,7 +260,7 @@ TEST(MeshQueries, RaysAndClosestPointsOnABoxMeshMatchTheBox) {
         worstFraction = std::max(worstFraction, std::abs(onSurface->fraction - onSolid->fraction));
         // On an edge either face's normal is right; away from edges they must agree.
         const Vec3 local = pose.applyInverse(onSolid->point).cwiseAbs();
-        const int nearEdges = ((e - local).array() < 1e-6).count();
+        const auto nearEdges = ((e - local).array() < 1e-6).count();
         if (nearEdges < 2)
             worstNormal = std::max(worstNormal, (onSurface->normal - onSolid->normal).norm());
     }

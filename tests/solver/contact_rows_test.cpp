@@ -97,8 +97,9 @@ TEST(ContactRows, SlidingBoxLosesTheSameSpeedAsInTheNarrowSweeps) {
         // One step of friction removes mu g h of speed (coupled) from 2 m/s.
         EXPECT_NEAR((wide.bodies[1].linearVelocity - narrow.bodies[1].linearVelocity).norm(), 0,
                     1e-12);
-        if (model == FrictionModel::Coupled)
+        if (model == FrictionModel::Coupled) {
             EXPECT_NEAR(wide.bodies[1].linearVelocity.norm(), 2 - 0.5 * kG * kH, 1e-9);
+        }
     }
 }
 
