@@ -54,7 +54,7 @@ std::uint8_t edgeBit(const HeightFieldData& grid, const MeshTriangle& t, int edg
     const bool active = isActiveEdge(
         v[static_cast<std::size_t>(edge)], v[static_cast<std::size_t>((edge + 1) % 3)],
         v[static_cast<std::size_t>((edge + 2) % 3)], detail::samplePoint(grid, ni, nj));
-    return active ? static_cast<std::uint8_t>(1u << edge) : 0;
+    return active ? static_cast<std::uint8_t>(1u << edge) : std::uint8_t{0};
 }
 
 std::uint8_t cellFlags(const HeightFieldGeometry& field, std::uint32_t i, std::uint32_t j) {
