@@ -62,6 +62,7 @@ ValidationCase springSchemeCase();
 ValidationCase tautStringCase();
 ValidationCase hangingChainCase();
 ValidationCase stiffNetCase();
+ValidationCase netEnergyCase();
 ValidationCase pendulumCase();
 ValidationCase jointChainCase();
 ValidationCase fiveBodyPendulumCase();
@@ -98,7 +99,8 @@ inline std::vector<ValidationCase> allCases() {
             stringCase(),
             stringCostCase(),
             stackCostCase(),
-            rollingCase()};
+            rollingCase(),
+            netEnergyCase()};
 }
 
 /// Least-squares slope of log(y) against log(x): the order of convergence.

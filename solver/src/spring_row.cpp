@@ -13,12 +13,6 @@ constexpr Real kMinimumLength = 1e-12;
 // (Fox-Goodwin, beta = 1/12): stable to (omega h)^2 = 6, and a node's highest mode is about
 // twice its element's (omega h)^2.
 constexpr Real kFourthOrderUpTo = 1.5;
-// (omega h)^2 of an element up to which a thread catches with the three-level weights; above,
-// its catching step takes implicit Euler. A 10 x 10 net thrown open at omega_e h = 0.7 and
-// 0.85 ((omega h)^2 = 0.98, 1.45) gained energy without bound over 60 s with the three-level
-// catches (so did explicit threads at 0.85), and the net-10 sweep's error was 2-4x lower with
-// them at omega_e h <= 0.42.
-constexpr Real kSmoothCatchUpTo = 0.5;
 // (omega h)^2 from which the unresolved element is damped: rho = this / (omega h)^2.
 constexpr Real kDampedFrom = 4;
 
@@ -41,6 +35,15 @@ SchemeWeights schemeWeights(Real spectralRadius, Real squared) {
     return {next, rho * rho * next, 1 / (1 + rho)};
 }
 
+// The weights of a thread's catching step: the trapezoidal rule (beta = 1/4: stable at every
+// omega h, no numerical damping of a linear mode) where the element is resolved and the scheme
+// undamped, implicit Euler otherwise (see spring_row.h).
+SchemeWeights catchWeights(Real spectralRadius, Real squared) {
+    if (spectralRadius >= 1 && squared < kDampedFrom)
+        return {0.25, 0.25, 0.5};
+    return schemeWeights(0, squared);
+}
+
 }  // namespace
 
 void prepareSpringRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h) {
@@ -52,8 +55,8 @@ void prepareSpringRow(const SolverBody& a, const SolverBody& b, SpringRow& row, 
     const Real inverseMass = a.inverseMass + b.inverseMass + row.angularA.dot(row.angularImpulseA) +
                              row.angularB.dot(row.angularImpulseB);
     const Real squared = h * h * row.stiffness * inverseMass;  // (omega h)^2
-    const bool eulerCatch = row.catching && squared > kSmoothCatchUpTo;
-    const SchemeWeights w = schemeWeights(eulerCatch ? 0 : row.spectralRadius, squared);
+    const SchemeWeights w = row.catching ? catchWeights(row.spectralRadius, squared)
+                                         : schemeWeights(row.spectralRadius, squared);
     const Real next = w.next, last = w.last, rateNext = w.rateNext;
     const Real resistance = h * row.stiffness * next + row.damping * rateNext;  // r (N s/m)
     const bool usable = row.length >= kMinimumLength && inverseMass > 0;
