@@ -11,11 +11,9 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
-#include <span>
 #include <string>
 #include <vector>
 
-#include "checkpoint_io.h"
 #include "collision/mesh_fixtures.h"
 #include "engine/checkpoint_resume.h"
 #include "refusal.h"
@@ -128,17 +126,9 @@ TEST(CheckpointMesh, SharedGeometryIsSavedOnceAndSharedAfterLoading) {
     }
 }
 
-class CheckpointMeshRefusal : public ::testing::Test {
+class CheckpointMeshRefusal : public test::CheckpointRefusalBase {
 protected:
-    void SetUp() override {
-        Scene s = surfaceScene();
-        ASSERT_TRUE(testkit::simulate(s.world, 3));
-        good = checkpointBytes(s.world);
-        Scene other = surfaceScene();
-        target = std::move(other.world);
-        ASSERT_TRUE(testkit::simulate(target, 7));
-        before = checkpointBytes(target);
-    }
+    void SetUp() override { prepare(surfaceScene(), 3, surfaceScene(), 7); }
     /// Where the 8 bytes of `value` first sit in the good checkpoint.
     std::size_t offsetOf(Real value) const {
         const auto bits = std::bit_cast<std::uint64_t>(value);
@@ -151,17 +141,11 @@ protected:
     }
     /// `bytes` with a header that agrees with its payload, refused: the message.
     std::string refuse(std::vector<std::uint8_t> bytes) {
-        writeU64(bytes, 16, bytes.size() - 32);
-        writeU64(bytes, 24, checkpoint_io::fnv1a(std::span<const std::uint8_t>(bytes).subspan(32)));
-        const std::string message =
-            refusal([&] { restoreCheckpoint(target, bytes, "terrain.ckpt"); });
-        EXPECT_EQ(checkpointBytes(target), before) << "a refused checkpoint changed the world";
+        test::sealPayload(bytes);
+        const std::string message = CheckpointRefusalBase::refuse(bytes, "terrain.ckpt");
         EXPECT_TRUE(contains(message, "checkpoint terrain.ckpt: corrupt payload at byte"));
         return message;
     }
-    std::vector<std::uint8_t> good;
-    std::vector<std::uint8_t> before;
-    World target;
 };
 
 TEST_F(CheckpointMeshRefusal, NonFiniteVertexOrHeightNamesTheBuildersReason) {

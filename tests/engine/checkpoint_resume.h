@@ -6,8 +6,12 @@
 
 #include <bit>
 #include <cstdint>
+#include <span>
+#include <string>
 #include <vector>
 
+#include "checkpoint_io.h"
+#include "refusal.h"
 #include "testkit/same_ids.h"
 #include "testkit/scenes.h"
 #include "tumble/checkpoint.h"
@@ -83,5 +87,36 @@ inline void writeU64(std::vector<std::uint8_t>& b, std::size_t at, std::uint64_t
     for (int i = 0; i < 8; ++i)
         b[at + i] = static_cast<std::uint8_t>(v >> (8 * i));
 }
+
+/// Rewrites the header's payload length and checksum to agree with the payload (so that the
+/// reader, not the checksum, must notice what is wrong in it).
+inline void sealPayload(std::vector<std::uint8_t>& bytes) {
+    writeU64(bytes, 16, bytes.size() - 32);
+    writeU64(bytes, 24, checkpoint_io::fnv1a(std::span<const std::uint8_t>(bytes).subspan(32)));
+}
+
+/// A world that refused checkpoints are loaded into, with the checkpoint it must keep.
+class CheckpointRefusalBase : public ::testing::Test {
+protected:
+    /// good: the checkpoint of `saved` after `savedSteps`; target: `other` after `otherSteps`.
+    void prepare(Scene saved, int savedSteps, Scene other, int otherSteps) {
+        ASSERT_TRUE(testkit::simulate(saved.world, savedSteps));
+        good = checkpointBytes(saved.world);
+        target = std::move(other.world);
+        ASSERT_TRUE(testkit::simulate(target, otherSteps));
+        before = checkpointBytes(target);
+    }
+    /// The message of restoring `bytes` into `target` from `source`; the world must be left
+    /// untouched and the message name the source.
+    std::string refuse(const std::vector<std::uint8_t>& bytes, const std::string& source) {
+        const std::string message = refusal([&] { restoreCheckpoint(target, bytes, source); });
+        EXPECT_EQ(checkpointBytes(target), before) << "a refused checkpoint changed the world";
+        EXPECT_TRUE(contains(message, "checkpoint " + source + ": "));
+        return message;
+    }
+    std::vector<std::uint8_t> good;    ///< a checkpoint of another world
+    std::vector<std::uint8_t> before;  ///< target's own checkpoint
+    World target;
+};
 
 }  // namespace tumble::test

@@ -361,27 +361,12 @@ TEST(Checkpoint, FileRoundTripReplacesTheTemporary) {
 
 // --- refusals ------------------------------------------------------------------------------
 
-class CheckpointRefusal : public ::testing::Test {
+class CheckpointRefusal : public test::CheckpointRefusalBase {
 protected:
-    void SetUp() override {
-        Scene s = netScene();
-        ASSERT_TRUE(testkit::simulate(s.world, 5));
-        good = checkpointBytes(s.world);
-        Scene other = jointScene();
-        ASSERT_TRUE(testkit::simulate(other.world, 3));
-        target = std::move(other.world);
-        before = checkpointBytes(target);
-    }
-    /// The refusal message of restoring `bytes` into `target`, which must be left untouched.
+    void SetUp() override { prepare(netScene(), 5, jointScene(), 3); }
     std::string refuse(const std::vector<std::uint8_t>& bytes) {
-        const std::string message = refusal([&] { restoreCheckpoint(target, bytes, "run.ckpt"); });
-        EXPECT_EQ(checkpointBytes(target), before) << "a refused checkpoint changed the world";
-        EXPECT_TRUE(contains(message, "run.ckpt"));
-        return message;
+        return CheckpointRefusalBase::refuse(bytes, "run.ckpt");
     }
-    std::vector<std::uint8_t> good;
-    std::vector<std::uint8_t> before;
-    World target;
 };
 
 TEST_F(CheckpointRefusal, Truncated) {
