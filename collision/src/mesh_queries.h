@@ -14,6 +14,11 @@ namespace tumble::detail {
 std::optional<RayHit> raycastSurface(const Shape& shape, const Transform& pose, const Vec3& o,
                                      const Vec3& d, const Ray& ray);
 
+/// The reference answer for a height field: every cell under the box of the ray's stretch over
+/// the field, which the grid walk of raycastSurface must match (tests, benchmark).
+std::optional<RayHit> raycastCellsUnderBox(const HeightFieldGeometry& field, const Transform& pose,
+                                           const Vec3& o, const Vec3& d, const Ray& ray);
+
 /// The point of the surface nearest to `p` (local frame).
 Vec3 closestOnSurface(const MeshGeometry& mesh, const Vec3& p);
 Vec3 closestOnSurface(const HeightFieldGeometry& field, const Vec3& p);

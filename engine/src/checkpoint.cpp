@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "checkpoint_io.h"
+#include "checkpoint_surfaces.h"
 #include "world_impl.h"
 
 namespace tumble {
@@ -78,6 +79,7 @@ template <typename Ar>
 void field(Ar& a, HullFace& x) {
     fields(a, x.normal, x.offset, x.first, x.count);
 }
+
 template <typename Ar>
 void field(Ar& a, Shape& shape) {
     std::uint8_t type = static_cast<std::uint8_t>(shape.index());
@@ -103,12 +105,18 @@ void field(Ar& a, Shape& shape) {
                 shape = HalfSpace{};
                 break;
             case ShapeType::TriangleMesh:
+                shape = TriangleMesh{};
+                break;
             case ShapeType::HeightField:
-                a.corrupt("shape type ", int{type}, " (a mesh or height field: not saved yet)");
+                shape = HeightField{};
                 break;
             default:
                 a.corrupt("shape type ", int{type});
         }
+    }
+    if (isTriangleSurface(shape)) {
+        surfaceReference(a, shape);
+        return;
     }
     std::visit(
         [&](auto& s) {
@@ -121,15 +129,7 @@ void field(Ar& a, Shape& shape) {
                 fields(a, s.halfExtents);
             } else if constexpr (std::is_same_v<S, HalfSpace>) {
                 fields(a, s.normal, s.offset);
-            } else if constexpr (std::is_same_v<S, TriangleMesh> ||
-                                 std::is_same_v<S, HeightField>) {
-                // The geometry is scene data, too large to copy into every checkpoint; a
-                // reference to it is not saved yet (issue 26).
-                fail(
-                    "checkpoint: a body carries a triangle mesh or height field, which checkpoints "
-                    "do not save yet");
-            } else {
-                static_assert(std::is_same_v<S, ConvexHull>);
+            } else if constexpr (std::is_same_v<S, ConvexHull>) {
                 bool present = s.data != nullptr;
                 field(a, present);
                 if constexpr (Ar::kReading)
@@ -140,6 +140,8 @@ void field(Ar& a, Shape& shape) {
                 // the reader fills the fresh copy it just made.
                 auto& data = const_cast<HullData&>(*s.data);
                 fields(a, data.vertices, data.faces, data.faceVertices, data.edges, data.centroid);
+            } else {
+                static_assert(std::is_same_v<S, TriangleMesh> || std::is_same_v<S, HeightField>);
             }
         },
         shape);
@@ -247,6 +249,7 @@ void field(Ar& a, ProxyPair& x) {
 
 using checkpoint_io::fields;
 using checkpoint_io::sequence;
+using checkpoint_io::surfaceSection;
 
 /// Friend of World and of the stores: lists their private state.
 struct CheckpointAccess {
@@ -334,6 +337,7 @@ struct CheckpointAccess {
         BodyStore& b = w.bodies;
         fields(a, b.motion, b.previousMotion, b.inertia, b.forces, b.info, b.awake);
         io(a, b.pool_);
+        surfaceSection(a, w.shapes.records);
         fields(a, w.shapes.records);
         io(a, w.shapes.pool_);
         io(a, w.contacts);
@@ -492,8 +496,14 @@ struct CheckpointAccess {
         for (std::uint32_t slot = 0; slot < shapeSlots; ++slot) {
             const ShapeRecord& shape = w.shapes.records[slot];
             one(shape.nextInBody, shapeSlots, true, "next shape");
-            if (w.shapes.isAlive(slot) && (!b.isValid(shape.body) || shape.proxy >= proxies))
+            if (!w.shapes.isAlive(slot))
+                continue;
+            if (!b.isValid(shape.body) || shape.proxy >= proxies)
                 r.corrupt("a shape's body or proxy is invalid");
+            const bool staticOnly = isTriangleSurface(shape.def.geometry) ||
+                                    std::holds_alternative<HalfSpace>(shape.def.geometry);
+            if (staticOnly && b.info[b.indexOf(shape.body)].type == BodyType::Dynamic)
+                r.corrupt("a dynamic body carries a half-space, mesh or height field");
         }
         for (std::size_t slot = 0; slot < c.pool_.size(); ++slot) {
             const ContactManager::Record& record = c.pool_[slot];

@@ -16,6 +16,7 @@
 #include <variant>
 #include <vector>
 
+#include "tumble/collision/shape.h"
 #include "tumble/core/error.h"
 #include "tumble/core/math.h"
 
@@ -44,6 +45,9 @@ public:
         return n;
     }
     std::vector<std::uint8_t> bytes;
+    /// The triangle surfaces of the surface section, in its order: a shape that carries one is
+    /// saved as its index here (checkpoint.cpp).
+    std::vector<Shape> surfaces;
 };
 
 class Reader {
@@ -69,7 +73,8 @@ public:
         return static_cast<std::size_t>(n);
     }
     bool atEnd() const { return position_ == data_.size(); }
-    std::uint32_t world = 0;  ///< world tag given to the non-null ids read
+    std::uint32_t world = 0;      ///< world tag given to the non-null ids read
+    std::vector<Shape> surfaces;  ///< rebuilt from the surface section (see Writer::surfaces)
     template <typename... Parts>
     [[noreturn]] void corrupt(Parts&&... parts) const {
         fail("checkpoint ", source_, ": corrupt payload at byte ", position_, ": ",

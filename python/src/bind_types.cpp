@@ -116,7 +116,8 @@ void bindDefinitions(py::module_& m) {
         .field("mask", &QueryFilter::mask, "bits");
     Struct<ShapeDef>(m, "ShapeDef", "A shape to attach to a body (World.create_shape).")
         .field("geometry", &ShapeDef::geometry,
-               "Sphere, Capsule, Box, Cylinder, ConvexHull or HalfSpace")
+               "Sphere, Capsule, Box, Cylinder, ConvexHull, HalfSpace, TriangleMesh or "
+               "HeightField")
         .field("local_pose", &ShapeDef::localPose, "the shape's frame in the body frame")
         .field("material", &ShapeDef::material, "Material")
         .field("filter", &ShapeDef::filter, "CollisionFilter")

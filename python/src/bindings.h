@@ -99,6 +99,8 @@ private:
 
 void bindIds(py::module_& m);
 void bindTypes(py::module_& m);
+/// TriangleMesh and HeightField (before ShapeDef, whose geometry may hold them).
+void bindSurfaces(py::module_& m);
 void bindWorld(py::module_& m);
 void bindState(py::module_& m, py::class_<PyWorld>& world);
 void bindScene(py::module_& m);

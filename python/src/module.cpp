@@ -166,6 +166,7 @@ PYBIND11_MODULE(_tumble, m) {
     m.doc() = "Tumble rigid-body, string and net physics (SI units, double precision).";
     py::register_exception<tumble::InvalidArgument>(m, "InvalidArgument", PyExc_ValueError);
     bindIds(m);
+    bindSurfaces(m);
     bindTypes(m);
     bindWorld(m);
     bindScene(m);

@@ -1,6 +1,7 @@
 // `tumble run --checkpoint FILE [--checkpoint-every T]` and `tumble run --resume FILE`: a run
 // stopped and resumed ends in the very state of the run that was not stopped, and a bad
-// checkpoint is refused with status 2 and a message naming the file and the fault.
+// checkpoint is refused with status 2 and a message naming the file and the fault. Scenes with
+// a height field or a triangle mesh resume as well.
 
 #include <gtest/gtest.h>
 
@@ -62,6 +63,27 @@ TEST(CheckpointCommand, ResumedRunEndsBitwiseWhereTheUninterruptedRunEnds) {
     ASSERT_EQ(d.status, 0) << d.err;
     EXPECT_EQ(slurp(periodic), slurp(whole));
     EXPECT_FALSE(fs::exists(periodic + ".tmp"));
+}
+
+// The mesh scenes: the checkpoint carries the height field (terrain) and the triangle mesh
+// (mesh-level), so a run resumed from it ends where the uninterrupted run ends.
+TEST(CheckpointCommand, MeshScenesResumeBitwise) {
+    for (const std::string scene : {"terrain", "mesh-level"}) {
+        const fs::path dir = scratch("checkpoint_mesh_" + scene);
+        const std::string whole = (dir / "whole.ckpt").string();
+        const std::string half = (dir / "half.ckpt").string();
+        const std::string resumed = (dir / "resumed.ckpt").string();
+        for (const auto& args : std::vector<std::vector<std::string>>{
+                 {"run", scene, "--time", "0.5", "--quiet", "--checkpoint", whole},
+                 {"run", scene, "--time", "0.25", "--quiet", "--checkpoint", half},
+                 {"run", scene, "--time", "0.5", "--quiet", "--resume", half, "--checkpoint",
+                  resumed}}) {
+            const Outcome run = tumbleRun(args);
+            ASSERT_EQ(run.status, 0) << scene << ": " << run.err;
+        }
+        EXPECT_EQ(slurp(resumed), slurp(whole)) << scene;
+        EXPECT_NE(slurp(half), slurp(whole)) << scene << ": the bodies moved in between";
+    }
 }
 
 TEST(CheckpointCommand, BadCheckpointIsRefusedWithStatusTwo) {

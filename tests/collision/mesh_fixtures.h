@@ -28,6 +28,22 @@ inline TriangleMeshData flatGrid(int n, Real cell) {
     return data;
 }
 
+/// A height field of columns x rows samples at the given spacings (m), sample (i, j) at height
+/// `height(i, j)` (m); no holes.
+template <typename Height>
+HeightFieldData heightGrid(std::uint32_t columns, std::uint32_t rows, Real spacingX, Real spacingY,
+                           Height&& height) {
+    HeightFieldData grid;
+    grid.columns = columns;
+    grid.rows = rows;
+    grid.spacingX = spacingX;
+    grid.spacingY = spacingY;
+    for (std::uint32_t j = 0; j < rows; ++j)
+        for (std::uint32_t i = 0; i < columns; ++i)
+            grid.heights.push_back(height(i, j));
+    return grid;
+}
+
 /// The triangles the hierarchy offers for `box`, and those a test of every triangle finds.
 struct Candidates {
     std::set<std::uint32_t> walked, brute;

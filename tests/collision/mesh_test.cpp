@@ -21,6 +21,7 @@ namespace tumble {
 namespace {
 
 using testing::flatGrid;
+using testing::heightGrid;
 
 /// The 12 triangles of a box's surface, outward normals.
 TriangleMeshData boxMesh(const Vec3& e) {
@@ -224,12 +225,8 @@ TEST(MeshNarrowphase, EveryConvexShapeOnABoxMeshMatchesTheBox) {
 }
 
 TEST(MeshNarrowphase, EveryConvexShapeOnAFlatHeightFieldMatchesTheHalfSpace) {
-    HeightFieldData grid;
-    grid.columns = 41;
-    grid.rows = 31;
-    grid.spacingX = 0.2;
-    grid.spacingY = 0.25;
-    grid.heights.assign(std::size_t{41} * 31, 0.0);
+    const HeightFieldData grid =
+        heightGrid(41, 31, 0.2, 0.25, [](std::uint32_t, std::uint32_t) { return 0.0; });
     expectSameAsSolid(HeightField::fromData(grid), HalfSpace{}, tilted(), Vec3(4, 3.75, 0), 3.0,
                       "flat height field vs half-space");
 }
@@ -275,14 +272,8 @@ TEST(MeshQueries, RaysAndClosestPointsOnABoxMeshMatchTheBox) {
 }
 
 TEST(MeshQueries, RaysOnAHeightFieldHitItsTrianglesAndPassThroughHoles) {
-    HeightFieldData grid;
-    grid.columns = 5;
-    grid.rows = 4;
-    grid.spacingX = 1;
-    grid.spacingY = 2;
-    for (std::uint32_t j = 0; j < grid.rows; ++j)
-        for (std::uint32_t i = 0; i < grid.columns; ++i)
-            grid.heights.push_back(0.1 * i + 0.05 * j * j);
+    HeightFieldData grid = heightGrid(
+        5, 4, 1, 2, [](std::uint32_t i, std::uint32_t j) { return 0.1 * i + 0.05 * j * j; });
     grid.holes.assign(4 * 3, 0);
     grid.holes[1 * 4 + 2] = 1;  // cell (2, 1)
     const Shape field = HeightField::fromData(grid);

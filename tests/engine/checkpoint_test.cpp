@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "checkpoint_io.h"
+#include "engine/checkpoint_resume.h"
 #include "refusal.h"
 #include "testkit/same_ids.h"
 #include "testkit/scenes.h"
@@ -27,44 +28,13 @@
 namespace tumble {
 namespace {
 
+using test::addBody;
 using test::contains;
+using test::expectBitwiseResume;
+using test::readU64;
 using test::refusal;
-using test::sameBodies;
-
-/// Every body's pose, velocities and awake flag, as raw bits, in dense-slot order of the ids
-/// given.
-std::vector<std::uint64_t> stateBits(const World& world, const std::vector<BodyId>& bodies) {
-    std::vector<std::uint64_t> bits;
-    const auto add = [&](const Vec3& v) {
-        for (int k = 0; k < 3; ++k)
-            bits.push_back(std::bit_cast<std::uint64_t>(v[k]));
-    };
-    for (const BodyId b : bodies) {
-        add(world.position(b));
-        add(world.orientation(b).coeffs().head<3>());
-        bits.push_back(std::bit_cast<std::uint64_t>(world.orientation(b).w()));
-        add(world.linearVelocity(b));
-        add(world.angularVelocity(b));
-        bits.push_back(world.isAwake(b) ? 1 : 0);
-        add(world.interpolatedTransform(b, 0.25).position);  // the previous pose counts too
-    }
-    return bits;
-}
-
-struct Scene {
-    World world;
-    std::vector<BodyId> bodies;
-    std::vector<SpringId> springs;
-};
-
-BodyId addBody(Scene& scene, const Vec3& position, BodyType type = BodyType::Dynamic) {
-    BodyDef def;
-    def.type = type;
-    def.position = position;
-    const BodyId id = scene.world.createBody(def);
-    scene.bodies.push_back(id);
-    return id;
-}
+using test::Scene;
+using test::writeU64;
 
 // A pile that falls asleep, next to a pyramid that a ball falls onto after the checkpoint; the
 // shapes cover every geometry type, and one body has drag.
@@ -221,29 +191,6 @@ int touchingAwakeContacts(const World& world) {
     for (const Contact& c : world.contacts())
         n += c.manifold.pointCount > 0 && (world.isAwake(c.bodyA) || world.isAwake(c.bodyB));
     return n;
-}
-
-/// Runs `warmup` steps, checkpoints, restores into a default world, and steps both for `further`
-/// steps comparing every body's state bitwise at every step, and the whole checkpoint at the end.
-void expectBitwiseResume(Scene& original, int warmup, int further) {
-    ASSERT_TRUE(testkit::simulate(original.world, warmup));
-    const std::vector<std::uint8_t> saved = checkpointBytes(original.world);
-    World resumed;  // a different (empty) world: everything must come from the checkpoint
-    restoreCheckpoint(resumed, saved);
-    ASSERT_EQ(checkpointBytes(resumed), saved) << "the restored world saves differently";
-    ASSERT_EQ(resumed.stepCount(), original.world.stepCount());
-    ASSERT_EQ(std::bit_cast<std::uint64_t>(resumed.time()),
-              std::bit_cast<std::uint64_t>(original.world.time()));
-    const std::vector<BodyId> resumedBodies = sameBodies(resumed, original.bodies);
-    ASSERT_EQ(stateBits(original.world, original.bodies), stateBits(resumed, resumedBodies))
-        << "differs before any step";
-    for (int i = 0; i < further; ++i) {
-        ASSERT_TRUE(original.world.step().ok());
-        ASSERT_TRUE(resumed.step().ok());
-        ASSERT_EQ(stateBits(original.world, original.bodies), stateBits(resumed, resumedBodies))
-            << "diverged at step " << i + 1 << " after the checkpoint";
-    }
-    EXPECT_EQ(checkpointBytes(original.world), checkpointBytes(resumed));
 }
 
 TEST(Checkpoint, PileWithSleepingBodiesAndActiveContactsResumesBitwise) {
@@ -414,38 +361,12 @@ TEST(Checkpoint, FileRoundTripReplacesTheTemporary) {
 
 // --- refusals ------------------------------------------------------------------------------
 
-std::uint64_t readU64(const std::vector<std::uint8_t>& b, std::size_t at) {
-    std::uint64_t v = 0;
-    for (int i = 0; i < 8; ++i)
-        v |= std::uint64_t{b[at + i]} << (8 * i);
-    return v;
-}
-void writeU64(std::vector<std::uint8_t>& b, std::size_t at, std::uint64_t v) {
-    for (int i = 0; i < 8; ++i)
-        b[at + i] = static_cast<std::uint8_t>(v >> (8 * i));
-}
-
-class CheckpointRefusal : public ::testing::Test {
+class CheckpointRefusal : public test::CheckpointRefusalBase {
 protected:
-    void SetUp() override {
-        Scene s = netScene();
-        ASSERT_TRUE(testkit::simulate(s.world, 5));
-        good = checkpointBytes(s.world);
-        Scene other = jointScene();
-        ASSERT_TRUE(testkit::simulate(other.world, 3));
-        target = std::move(other.world);
-        before = checkpointBytes(target);
-    }
-    /// The refusal message of restoring `bytes` into `target`, which must be left untouched.
+    void SetUp() override { prepare(netScene(), 5, jointScene(), 3); }
     std::string refuse(const std::vector<std::uint8_t>& bytes) {
-        const std::string message = refusal([&] { restoreCheckpoint(target, bytes, "run.ckpt"); });
-        EXPECT_EQ(checkpointBytes(target), before) << "a refused checkpoint changed the world";
-        EXPECT_TRUE(contains(message, "run.ckpt"));
-        return message;
+        return CheckpointRefusalBase::refuse(bytes, "run.ckpt");
     }
-    std::vector<std::uint8_t> good;
-    std::vector<std::uint8_t> before;
-    World target;
 };
 
 TEST_F(CheckpointRefusal, Truncated) {

@@ -14,7 +14,6 @@
 #include <vector>
 
 #include "collision/mesh_fixtures.h"
-#include "tumble/checkpoint.h"
 #include "tumble/collision/mesh_shape.h"
 #include "tumble/core/error.h"
 #include "tumble/world.h"
@@ -23,6 +22,7 @@ namespace tumble {
 namespace {
 
 using testing::flatGrid;
+using testing::heightGrid;
 
 constexpr Real kGravity = 9.81;
 
@@ -109,14 +109,9 @@ TEST(MeshContact, BallRollsAcrossFlatMeshAtConstantSpeed) {
 
 TEST(MeshContact, BallRollsDownHeightFieldSlopeAtFiveSeventhsGSinTheta) {
     const Real theta = 15 * std::numbers::pi / 180, r = 0.3;
-    HeightFieldData grid;
-    grid.columns = 81;
-    grid.rows = 11;
-    grid.spacingX = 0.5;
-    grid.spacingY = 0.5;
-    for (std::uint32_t j = 0; j < grid.rows; ++j)
-        for (std::uint32_t i = 0; i < grid.columns; ++i)
-            grid.heights.push_back(-std::tan(theta) * i * grid.spacingX);
+    const HeightFieldData grid = heightGrid(81, 11, 0.5, 0.5, [&](std::uint32_t i, std::uint32_t) {
+        return -std::tan(theta) * i * 0.5;
+    });
     World world;
     const BodyId ground = world.createBody(BodyDef{.type = BodyType::Static});
     ShapeDef field{.geometry = HeightField::fromData(grid)};
@@ -217,24 +212,6 @@ TEST(MeshContact, PileOnARoughMeshStaysOnIt) {
         "m)\n",
         lowest);
     EXPECT_GT(lowest, 0.0) << "a body fell through the mesh";
-}
-
-TEST(MeshContact, CheckpointsRefuseMeshesAndHeightFieldsWithAMessage) {
-    HeightFieldData grid;
-    grid.columns = grid.rows = 2;
-    grid.heights.assign(4, 0.0);
-    for (const Shape& surface :
-         {Shape(TriangleMesh::fromData(flatGrid(2, 1))), Shape(HeightField::fromData(grid))}) {
-        World world;
-        const BodyId ground = world.createBody(BodyDef{.type = BodyType::Static});
-        world.createShape(ground, ShapeDef{.geometry = surface});
-        try {
-            checkpointBytes(world);
-            ADD_FAILURE() << "a mesh was saved";
-        } catch (const InvalidArgument& e) {
-            EXPECT_NE(std::string(e.what()).find("do not save yet"), std::string::npos) << e.what();
-        }
-    }
 }
 
 }  // namespace

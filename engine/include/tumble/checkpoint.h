@@ -1,9 +1,10 @@
 #pragma once
 /// Checkpoint and resume: the whole state of a World -- bodies, shapes, materials, joints,
-/// springs, drag, controllers, the contact cache with its warm-start impulses, the broadphase,
-/// sleep timers, pending events, settings, time and step count -- written to a versioned binary
-/// file and read back. A world loaded from a checkpoint steps bitwise-identically to the world
-/// that was saved (same build; see docs/checkpoint.md for the format and its limits).
+/// springs, drag, controllers, the triangle meshes and height fields the shapes carry, the contact
+/// cache with its warm-start impulses, the broadphase, sleep timers, pending events, settings, time
+/// and step count -- written to a versioned binary file and read back. A world loaded from a
+/// checkpoint steps bitwise-identically to the world that was saved (same build; see
+/// docs/checkpoint.md for the format and its limits).
 ///
 /// Not saved: the pre-step callback (the application's code; a loaded world keeps its own) and
 /// the stage timings of the last step.
@@ -19,7 +20,7 @@
 namespace tumble {
 
 /// Format version written by this build; files of any other version are refused.
-inline constexpr std::uint32_t kCheckpointVersion = 8;
+inline constexpr std::uint32_t kCheckpointVersion = 9;
 
 /// The checkpoint of `world` as bytes (header and payload, as written to a file).
 std::vector<std::uint8_t> checkpointBytes(const World& world);
