@@ -212,9 +212,12 @@ int main(int argc, char** argv) {
     app.add_flag("!--no-plot", sweep.plot, "do not run the plotting script after the sweep");
     ScalingOptions scaling;
     app.add_flag("--scaling", scaling.enabled,
-                 "time a step against the body count instead (piles of 1k-10k bodies, nets of "
+                 "time a step against the body count instead (piles of 1k-20k bodies, nets of "
                  "100-10,000 nodes) and fit the exponent");
     app.add_flag("--scaling-50k", scaling.with50k, "add a pile of 50,000 bodies to --scaling");
+    app.add_option("--scaling-piles", scaling.piles,
+                   "the piles' body counts instead of 1k, 2k, 4k, 10k, 20k (and 50k)")
+        ->check(CLI::PositiveNumber);
     StringPeerOptions string;
     app.add_option("--string", string.outDir,
                    "the study's hanging string in the peers instead (for Fig. 7 and Fig. 10 "
@@ -251,6 +254,7 @@ int main(int argc, char** argv) {
         scaling.outPrefix = outPrefix;
         scaling.engines = engines;
         scaling.kinds = only;  // --scene pile / net
+        scaling.colouredContacts = coloured;
         return runScaling(scaling);
     }
 

@@ -1,5 +1,5 @@
 #pragma once
-/// Scaling: the wall time of one step against the body count -- piles of 1,000 to 10,000
+/// Scaling: the CPU time of one step against the body count -- piles of 1,000 to 20,000
 /// (optionally 50,000) mixed bodies, nets of 100 to 10,000 nodes -- in each 3-D engine, and the
 /// exponent p of time ~ count^p fitted by least squares on the log-log points.
 
@@ -14,6 +14,8 @@ struct ScalingOptions {
     std::vector<std::string> engines;  ///< only these; empty: every 3-D engine compiled in
     std::vector<std::string> kinds;    ///< only these of "pile", "net"; empty: both
     std::string outPrefix;             ///< writes PREFIX-scaling.csv unless empty
+    bool colouredContacts = false;     ///< Tumble's coloured contact sweeps
+    std::vector<int> piles;            ///< body counts; empty: the default list
 };
 
 /// Runs the scaling study, prints the table and the fitted exponents; returns the exit code.

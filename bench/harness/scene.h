@@ -73,6 +73,7 @@ public:
     /// A body's position (m): the cubes in build order, the net's nodes row-major.
     Vec3 position(int body) const { return world_->position(body); }
     Real timeStep() const { return settings_.timeStep; }
+    const PeerWorld& world() const { return *world_; }
 
 private:
     struct Thread {
