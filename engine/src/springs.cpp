@@ -70,7 +70,9 @@ Real springPotentialEnergy(const SpringStore& springs, const BodyStore& bodies) 
 
 void wakeSpringLinked(const SpringStore& springs, BodyStore& bodies, ContactManager& contacts,
                       Islands& islands) {
-    // Cheap test first: nothing sleeps in most scenes that have springs.
+    // Cheap tests first: nothing sleeps in most scenes that have springs.
+    if (bodies.awake.size() == bodies.count())
+        return;
     bool anySleeping = false;
     for (std::uint32_t i = 0; i < springs.count() && !anySleeping; ++i) {
         const SpringDef& def = springs.defs[i];
