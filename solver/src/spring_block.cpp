@@ -228,6 +228,13 @@ bool SpringBlockSolver::factor() {
             const Real yi = work_[i];
             work_[i] = 0;
             const int end = reachSlot_[q];
+            // A slack thread's row couples nothing: its y is +0 (work_ never holds -0: it sums
+            // from +0 and subtracts, and x - x is +0), and so is its L entry; subtracting
+            // +0 * l changes no value, so skipping it keeps the bits.
+            if (yi == 0) {
+                lValue_[end] = 0;
+                continue;
+            }
             for (int p = lStart_[i]; p < end; ++p)
                 work_[lIndex_[p]] -= lValue_[p] * yi;
             const Real lki = yi / diagonal_[i];
