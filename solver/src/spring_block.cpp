@@ -331,13 +331,19 @@ void SpringBlockSolver::computeUpdate(std::span<const SolverBody> bodies,
                                       row.bias + row.softness * row.impulse)
                                   : 0;
     }
+    // An inactive row's row and column of L are +0 (factor()), so its value stays +0 and its
+    // column subtracts only +0 * +0: skipping it keeps every bit (x - +0 is x, -0 included).
     for (int j = 0; j < n; ++j) {  // L y = b
+        if (!active_[rowAt_[j]])
+            continue;
         for (int p = lStart_[j]; p < lStart_[j + 1]; ++p)
             work_[lIndex_[p]] -= lValue_[p] * work_[j];
     }
     for (int j = 0; j < n; ++j)
         work_[j] /= diagonal_[j];
     for (int j = n - 1; j >= 0; --j) {  // L' x = y
+        if (!active_[rowAt_[j]])
+            continue;
         for (int p = lStart_[j]; p < lStart_[j + 1]; ++p)
             work_[j] -= lValue_[p] * work_[lIndex_[p]];
     }
