@@ -130,7 +130,7 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
         [&](std::uint32_t index) {
             return bodies.isAwake(index) ? solverIndex(bodies, index) : 0u;
         },
-        springRows_, rowSpring_);
+        springRows_, rowSpring_, rowBodies_);
 
     buildJointRows(joints, bodies, context.h, jointRows_, rowJoint_);
 
@@ -193,44 +193,28 @@ void SolveStage::holdAnchors(const BodyStore& bodies, const ContactManager& cont
     anchorPass_.run(solverBodies_, constraints, anchorDrifts_, pseudo_, context.inverseH);
 }
 
-void SolveStage::projectSprings(BodyStore& bodies, const SpringStore& springs,
-                                const StepContext& context, const SolverSettings& settings) {
-    if (springRows_.empty() || !settings.projectSprings)
-        return;
-    const std::size_t awakeCount = bodies.awake.size();
-    projectedBodies_.resize(1 + awakeCount);
-    projectedBodies_[0] = SolverBody{};
-    for (std::size_t k = 0; k < awakeCount; ++k) {
-        const std::uint32_t i = bodies.awake[k];
-        const BodyMotion& m = bodies.motion[i];
-        SolverBody& s = projectedBodies_[1 + k];
-        s = SolverBody{};
-        s.inverseMass = bodies.inertia[i].inverseMass;
-        const Mat3 rotation = m.orientation.toRotationMatrix();
-        s.inverseInertia = rotation * bodies.inertia[i].inverseInertiaLocal * rotation.transpose();
-    }
+// The rows at the positions the step ended on, and what each must correct (m): returns the
+// largest. Only the geometry: the rows are prepared once a correction is known to be needed.
+Real SolveStage::projectionErrors(const BodyStore& bodies, const SpringStore& springs,
+                                  const StepContext& context) {
     projectedRows_.resize(springRows_.size());
+    projectionError_.resize(springRows_.size());
     Real worst = 0;
     for (std::size_t j = 0; j < springRows_.size(); ++j) {
         const SpringRow& solved = springRows_[j];
         const SpringDef& def = springs.defs[rowSpring_[j]];
+        const RowBodies& ends = rowBodies_[j];  // the bodies cannot change within a step
         SpringRow& row = projectedRows_[j];
         row = solved;
-        const Vec3 pA = anchorPosition(bodies, def.bodyA, def.localAnchorA);
-        const Vec3 pB = anchorPosition(bodies, def.bodyB, def.localAnchorB);
+        const Vec3 pA = anchorAt(bodies, ends.a, def.localAnchorA);
+        const Vec3 pB = ends.world ? def.localAnchorB : anchorAt(bodies, ends.b, def.localAnchorB);
         const Vec3 d = pB - pA;
         row.length = d.norm();
         row.direction = row.length > 0 ? Vec3(d / row.length) : solved.direction;
-        row.rA = pA - bodies.motion[bodies.indexOf(def.bodyA)].center;
-        row.rB = def.bodyB.isNull() ? Vec3::Zero()
-                                    : Vec3(pB - bodies.motion[bodies.indexOf(def.bodyB)].center);
+        row.rA = pA - bodies.motion[ends.a].center;
+        row.rB = ends.world ? Vec3::Zero() : Vec3(pB - bodies.motion[ends.b].center);
         row.impulse = 0;
         row.spectralRadius = 0;  // a position correction: the element's whole stiffness
-    }
-    prepareSpringRows(projectedBodies_, projectedRows_, context.h, false);
-    for (std::size_t j = 0; j < projectedRows_.size(); ++j) {
-        SpringRow& row = projectedRows_[j];
-        const SpringRow& solved = springRows_[j];
         const bool taut = !solved.tensionOnly || solved.impulse < 0;
         // A taut element: what the step's linearisation believed its length to be, against
         // the true one. A slack thread: whatever stretched it past its rest length without a
@@ -244,8 +228,34 @@ void SolveStage::projectSprings(BodyStore& bodies, const SpringStore& springs,
         // 1/240 ... 1/2000.
         if (solved.spectralRadius > 0 && !springRowUnresolved(solved, context.h))
             error = 0;
-        row.bias = error * context.inverseH;
+        projectionError_[j] = error;
         worst = std::max(worst, error);
+    }
+    return worst;
+}
+
+void SolveStage::projectSprings(BodyStore& bodies, const SpringStore& springs,
+                                const StepContext& context, const SolverSettings& settings) {
+    if (springRows_.empty() || !settings.projectSprings)
+        return;
+    if (projectionErrors(bodies, springs, context) <= 0)
+        return;
+    const std::size_t awakeCount = bodies.awake.size();
+    projectedBodies_.resize(1 + awakeCount);
+    projectedBodies_[0] = SolverBody{};
+    for (std::size_t k = 0; k < awakeCount; ++k) {
+        const std::uint32_t i = bodies.awake[k];
+        const BodyMotion& m = bodies.motion[i];
+        SolverBody& s = projectedBodies_[1 + k];
+        s = SolverBody{};
+        s.inverseMass = bodies.inertia[i].inverseMass;
+        const Mat3 rotation = m.orientation.toRotationMatrix();
+        s.inverseInertia = rotation * bodies.inertia[i].inverseInertiaLocal * rotation.transpose();
+    }
+    prepareSpringRows(projectedBodies_, projectedRows_, context.h, false);
+    for (std::size_t j = 0; j < projectedRows_.size(); ++j) {
+        SpringRow& row = projectedRows_[j];
+        row.bias = projectionError_[j] * context.inverseH;
         // Compliance of 1 % of the row's own inverse mass: a cell of the net folded flat puts
         // four rows on one line, dependent, and their slightly inconsistent errors came back as
         // huge displacements (a thread 4.7x its length for a step; the 40 x 40 net on a
@@ -257,8 +267,6 @@ void SolveStage::projectSprings(BodyStore& bodies, const SpringStore& springs,
             row.mass = 1 / (inverseMass + row.softness);
         }
     }
-    if (worst <= 0)
-        return;
     projector_.prepare(projectedBodies_, projectedRows_);
     if (!projector_.ready())
         return;

@@ -16,6 +16,7 @@
 #include "joint_store.h"
 #include "shape_store.h"
 #include "spring_store.h"
+#include "springs.h"
 #include "step_context.h"
 #include "tumble/contact.h"
 #include "tumble/solver/constraint_solver.h"
@@ -60,6 +61,9 @@ private:
     std::span<ContactConstraint> buildConstraints(const BodyStore& bodies, const ShapeStore& shapes,
                                                   const ContactManager& contacts,
                                                   const StepContext& context);
+    /// projectSprings()'s rows at the new positions and their errors; returns the largest (m).
+    Real projectionErrors(const BodyStore& bodies, const SpringStore& springs,
+                          const StepContext& context);
     /// Friction anchors (split impulse): this solve's drifts and the anchor pass on pseudo_.
     void holdAnchors(const BodyStore& bodies, const ContactManager& contacts,
                      std::span<const ContactConstraint> constraints, const StepContext& context);
@@ -72,9 +76,11 @@ private:
     std::vector<PseudoVelocity> pseudo_;
     std::vector<SpringRow> springRows_;
     std::vector<std::uint32_t> rowSpring_;  ///< spring index of each row
+    std::vector<RowBodies> rowBodies_;      ///< dense body indices of each row
     // projectSprings(): the rows at the new configuration, bodies at rest, the corrections.
     SpringBlockSolver projector_;
     std::vector<SpringRow> projectedRows_;
+    std::vector<Real> projectionError_;  ///< of each projected row (m)
     std::vector<SolverBody> projectedBodies_;
     std::vector<PseudoVelocity> corrections_;
     std::vector<JointRow> jointRows_;

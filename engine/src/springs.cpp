@@ -9,45 +9,44 @@ namespace {
 // No body: a spring end fixed in the world.
 constexpr std::uint32_t kWorld = ~std::uint32_t(0);
 
-// One end of an explicit spring: its body's dense index (looked up once) and where its anchor is.
+// One end of an explicit spring: its body's dense index (looked up once a step), where its
+// anchor is, and the anchor's offset from the body's centre, zero for a lumped node (whose
+// threads meet at its centre: no rotation, no lever arm).
 struct End {
     std::uint32_t index = kWorld;
     Vec3 position = Vec3::Zero();  // of the anchor (m)
+    Vec3 arm = Vec3::Zero();       // position - centre (m)
+    bool pushed = false;           // an awake dynamic body: forces act on it
 };
 
 End endOf(const BodyStore& bodies, BodyId body, const Vec3& localAnchor) {
     if (body.isNull())
         return {kWorld, localAnchor};
     const std::uint32_t i = bodies.indexOf(body);
-    const BodyMotion& m = bodies.motion[i];
-    const Vec3 offset = localAnchor - bodies.inertia[i].localCenter;
-    // A lumped node's threads meet at its centre: no rotation to apply.
-    return {i, offset.isZero() ? m.center : Vec3(m.center + m.orientation * offset)};
+    const Vec3 position = anchorAt(bodies, i, localAnchor);
+    return {i, position, position - bodies.motion[i].center, bodies.isAwakeDynamic(i)};
 }
 
 Vec3 anchorVelocity(const BodyStore& bodies, const End& end) {
     if (end.index == kWorld)
         return Vec3::Zero();
     const BodyMotion& m = bodies.motion[end.index];
-    return m.linearVelocity + m.angularVelocity.cross(end.position - m.center);
+    return end.arm.isZero() ? m.linearVelocity
+                            : Vec3(m.linearVelocity + m.angularVelocity.cross(end.arm));
 }
 
 void addForce(BodyStore& bodies, const End& end, const Vec3& force) {
-    if (end.index == kWorld || !bodies.isAwakeDynamic(end.index))
+    if (!end.pushed)
         return;
     bodies.forces[end.index].force += force;
-    bodies.forces[end.index].torque +=
-        (end.position - bodies.motion[end.index].center).cross(force);
+    if (!end.arm.isZero())
+        bodies.forces[end.index].torque += end.arm.cross(force);
 }
 
 }  // namespace
 
 Vec3 anchorPosition(const BodyStore& bodies, BodyId body, const Vec3& localAnchor) {
-    if (body.isNull())
-        return localAnchor;
-    const std::uint32_t i = bodies.indexOf(body);
-    const BodyMotion& m = bodies.motion[i];
-    return m.center + m.orientation * (localAnchor - bodies.inertia[i].localCenter);
+    return body.isNull() ? localAnchor : anchorAt(bodies, bodies.indexOf(body), localAnchor);
 }
 
 Real springLength(const SpringStore& springs, const BodyStore& bodies, std::uint32_t index) {
@@ -71,7 +70,9 @@ Real springPotentialEnergy(const SpringStore& springs, const BodyStore& bodies) 
 
 void wakeSpringLinked(const SpringStore& springs, BodyStore& bodies, ContactManager& contacts,
                       Islands& islands) {
-    // Cheap test first: nothing sleeps in most scenes that have springs.
+    // Cheap tests first: nothing sleeps in most scenes that have springs.
+    if (bodies.awake.size() == bodies.count())
+        return;
     bool anySleeping = false;
     for (std::uint32_t i = 0; i < springs.count() && !anySleeping; ++i) {
         const SpringDef& def = springs.defs[i];
@@ -116,8 +117,7 @@ void ForceElements::apply(SpringStore& springs, const DragStore& drag, BodyStore
             continue;
         const End a = endOf(bodies, def.bodyA, def.localAnchorA);
         const End b = endOf(bodies, def.bodyB, def.localAnchorB);
-        if (!bodies.isAwakeDynamic(a.index) &&
-            (b.index == kWorld || !bodies.isAwakeDynamic(b.index)))
+        if (!a.pushed && !b.pushed)
             continue;
         const Vec3 d = b.position - a.position;
         const Real length = d.norm();

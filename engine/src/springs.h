@@ -17,6 +17,21 @@ namespace tumble {
 /// World position of a spring anchor: on the body, or the world point itself for a null body.
 Vec3 anchorPosition(const BodyStore& bodies, BodyId body, const Vec3& localAnchor);
 
+/// World position of the anchor of the body at dense `index` (no handle lookup). A lumped
+/// node's anchor is its centre: no rotation.
+inline Vec3 anchorAt(const BodyStore& bodies, std::uint32_t index, const Vec3& localAnchor) {
+    const BodyMotion& m = bodies.motion[index];
+    const Vec3 offset = localAnchor - bodies.inertia[index].localCenter;
+    return offset.isZero() ? m.center : Vec3(m.center + m.orientation * offset);
+}
+
+/// Dense indices of an implicit spring row's bodies (b is meaningless for a world end).
+struct RowBodies {
+    std::uint32_t a = 0;
+    std::uint32_t b = 0;
+    bool world = false;  ///< B is the world point itself
+};
+
 /// Anchor distance of spring `index` at the current poses (m).
 Real springLength(const SpringStore& springs, const BodyStore& bodies, std::uint32_t index);
 
@@ -45,10 +60,11 @@ private:
 
 /// Rows of the implicit springs with an awake dynamic body at either end. `solverIndex` maps a
 /// body's dense index to its solver body; rows are warm-started from last step's tension.
+/// rowBodies: each row's dense body indices, for the step's later passes over the rows.
 template <typename SolverIndex>
 void buildSpringRows(const SpringStore& springs, const BodyStore& bodies, Real h,
                      SolverIndex&& solverIndex, std::vector<SpringRow>& rows,
-                     std::vector<std::uint32_t>& rowSpring);
+                     std::vector<std::uint32_t>& rowSpring, std::vector<RowBodies>& rowBodies);
 
 }  // namespace tumble
 

@@ -18,9 +18,10 @@ inline Vec3 startAnchorVelocity(const BodyStore& bodies, std::uint32_t index, bo
 template <typename SolverIndex>
 void buildSpringRows(const SpringStore& springs, const BodyStore& bodies, Real h,
                      SolverIndex&& solverIndex, std::vector<SpringRow>& rows,
-                     std::vector<std::uint32_t>& rowSpring) {
+                     std::vector<std::uint32_t>& rowSpring, std::vector<RowBodies>& rowBodies) {
     rows.clear();
     rowSpring.clear();
+    rowBodies.clear();
     if (springs.implicitCount == 0)
         return;
     for (std::uint32_t i = 0; i < springs.count(); ++i) {
@@ -33,8 +34,8 @@ void buildSpringRows(const SpringStore& springs, const BodyStore& bodies, Real h
         if (!bodies.isAwakeDynamic(a) && (world || !bodies.isAwakeDynamic(b)))
             continue;
         SpringRow row;
-        const Vec3 pA = anchorPosition(bodies, def.bodyA, def.localAnchorA);
-        const Vec3 pB = anchorPosition(bodies, def.bodyB, def.localAnchorB);
+        const Vec3 pA = anchorAt(bodies, a, def.localAnchorA);
+        const Vec3 pB = world ? def.localAnchorB : anchorAt(bodies, b, def.localAnchorB);
         row.bodyA = solverIndex(a);
         row.bodyB = world ? 0 : solverIndex(b);
         row.rA = pA - bodies.motion[a].center;
@@ -59,6 +60,7 @@ void buildSpringRows(const SpringStore& springs, const BodyStore& bodies, Real h
         }
         rows.push_back(row);
         rowSpring.push_back(i);
+        rowBodies.push_back({a, b, world});
     }
 }
 

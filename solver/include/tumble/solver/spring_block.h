@@ -95,6 +95,8 @@ private:
     bool refreshTransverseRows(std::span<SolverBody> bodies);
     bool samePattern(std::span<const SpringRow> rows) const;
     void analyse(std::span<const SpringRow> rows);
+    /// The elimination tree, L's pattern and each row's solve order (factor()'s walk, once).
+    void symbolic();
     void assemble(std::span<const SolverBody> bodies, std::span<const SpringRow> rows);
     bool factor();
     /// delta = -K^-1 residual over the active rows (in original row order).
@@ -131,6 +133,10 @@ private:
     std::vector<Real> diagonal_;
     std::vector<int> flag_;
     std::vector<int> pattern_;
+    // Row k of L: the columns reach_[reachStart_[k] ...] in solve order, each with its slot.
+    std::vector<int> reachStart_;
+    std::vector<int> reach_;
+    std::vector<int> reachSlot_;
     std::vector<Real> work_;
     std::vector<Real> delta_;
     std::vector<char> active_;
