@@ -19,7 +19,7 @@
 namespace tumble {
 
 /// Format version written by this build; files of any other version are refused.
-inline constexpr std::uint32_t kCheckpointVersion = 8;
+inline constexpr std::uint32_t kCheckpointVersion = 9;
 
 /// The checkpoint of `world` as bytes (header and payload, as written to a file).
 std::vector<std::uint8_t> checkpointBytes(const World& world);
