@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <numbers>
 
+#include "collision/mesh_fixtures.h"
 #include "tumble/collision/mesh_data.h"
 #include "tumble/collision/shape.h"
 
@@ -29,21 +30,9 @@ struct Crease {
     /// 2 `cells` along y, centred on the origin, two triangles per cell; the crease runs along
     /// triangle edges.
     TriangleMeshData mesh(int cells, Real cell) const {
-        TriangleMeshData data;
-        const int n = 2 * cells;
-        for (int j = 0; j <= n; ++j) {
-            for (int i = 0; i <= n; ++i) {
-                const Real x = (i - cells) * cell;
-                data.vertices.emplace_back(x, (j - cells) * cell, std::abs(x) * std::tan(tilt()));
-            }
-        }
-        const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(j * (n + 1) + i); };
-        for (int j = 0; j < n; ++j) {
-            for (int i = 0; i < n; ++i) {
-                data.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-                data.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-            }
-        }
+        TriangleMeshData data = flatGrid(2 * cells, cell);
+        for (Vec3& v : data.vertices)
+            v.z() = std::abs(v.x()) * std::tan(tilt());
         return data;
     }
 

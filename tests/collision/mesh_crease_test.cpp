@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -27,16 +28,9 @@ Real deepest(const Manifold& m) {
 
 Shape convexOfKind(std::mt19937& rng, int kind) {
     std::uniform_real_distribution<Real> size(0.1, 0.25);
-    switch (kind) {
-        case 0:
-            return Sphere{size(rng)};
-        case 1:
-            return Capsule{size(rng), size(rng)};
-        case 2:
-            return Box{Vec3(size(rng), size(rng), size(rng))};
-        default:
-            return Cylinder{size(rng), size(rng)};
-    }
+    const Real a = size(rng), b = size(rng), c = size(rng);
+    const std::array<Shape, 4> kinds{Sphere{a}, Capsule{a, b}, Box{Vec3(a, b, c)}, Cylinder{a, b}};
+    return kinds[static_cast<std::size_t>(kind)];
 }
 
 /// Whether every point of the face's manifold lies over that face, `clear` (m) from the crease
