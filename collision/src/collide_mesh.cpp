@@ -20,10 +20,14 @@
 // the active-edge idea of Jolt and Bullet's internal-edge utility, with the depth measured along
 // the replaced normal.
 //
-// The per-triangle manifolds then make one manifold: the normal of the deepest point, and the
-// points of every triangle whose normal lies within kMergeCos of it, reduced to 4 (deepest plus
-// largest area, clipping.h). Feature ids mix the triangle index into the pair routine's ids, so a
-// point keeps its id while the same triangle and features touch.
+// The per-triangle manifolds then make up to ManifoldSet::kMaxManifolds manifolds, one per group
+// of like normals (as Jolt keeps a manifold per sub-shape pair and merges those of near normals):
+// the deepest point not yet grouped seeds a group with its triangle manifold's normal, and every
+// ungrouped triangle whose normal lies within kMergeCos of it joins; past the limit, the rest
+// join the group of the nearest normal. Each group's points are reduced to 4 (deepest plus
+// largest area, clipping.h). So a box in a V-shaped crease gets a manifold on each face, each
+// the one a half-space in that face's plane gives. Feature ids mix the triangle index into the
+// pair routine's ids, so a point keeps its id while the same triangle and features touch.
 
 #include <array>
 #include <vector>
@@ -43,9 +47,14 @@ constexpr Real kPrismThickness = 1e-6;
 constexpr Real kBackReach = 0.5;
 /// Vertices within this (m) of the farthest one along a direction belong to the same feature.
 constexpr Real kFeatureTolerance = 1e-9;
-/// Points of triangles whose normal makes more than acos(kMergeCos) (about 18 degrees) with the
-/// deepest normal are left out of the manifold.
-constexpr Real kMergeCos = 0.95;
+/// Triangles whose normals lie within acos(kMergeCos) (5 degrees) of a group's share its
+/// manifold: a curved surface's neighbours (internal edges are flat within 3 degrees), but not
+/// the two faces of a crease (a V of 170 degrees folds by 10).
+constexpr Real kMergeCos = 0.99619469809174555;
+/// Points of one group closer than this (m) are one contact point.
+constexpr Real kSamePoint = 1e-6;
+/// Depths this close (m) are equal but for rounding: far below what the solver or a caller sees.
+constexpr Real kDepthNoise = 1e-10;
 /// Mixes a triangle's index into feature ids (Knuth's multiplicative hash constant).
 constexpr std::uint32_t kTriangleMix = 0x9E3779B1u;
 /// Marks the ids of points redone along a face normal.
@@ -144,6 +153,28 @@ Vec3 intoTriangle(const Transform& pose, const MeshTriangle& t, Real backReach) 
     return front ? Vec3(-t.normal) : t.normal;
 }
 
+/// Adds the shape's exact deepest point `c` to `m`. The half-space routine reduces to 4 points over
+/// the whole shape and may keep one within kDepthTolerance of the deepest instead of it. Where
+/// `c` is one of the points (an edge lying flat, whose support point rounding moves from end to
+/// end), that point takes its depth and keeps its id; else `c` replaces the point nearest to it
+/// if `m` is full.
+void addDeepest(Manifold& m, const ContactPoint& c) {
+    std::size_t nearest = 0;
+    for (std::size_t k = 0; k < static_cast<std::size_t>(m.pointCount); ++k) {
+        const Real distance = (m.points[k].position - c.position).squaredNorm();
+        if (distance < kSamePoint * kSamePoint) {
+            m.points[k].separation = std::min(m.points[k].separation, c.separation);
+            return;
+        }
+        if (distance < (m.points[nearest].position - c.position).squaredNorm())
+            nearest = k;
+    }
+    if (m.pointCount < Manifold::kMaxPoints)
+        m.add(c.position, c.separation, c.featureId);
+    else
+        m.points[nearest] = c;
+}
+
 /// Redoes a contact along the face normal `normal` (from the shape into the triangle; see the
 /// file comment).
 void alongFace(const Shape& shape, const Transform& pose, const MeshTriangle& t, const Vec3& normal,
@@ -153,24 +184,22 @@ void alongFace(const Shape& shape, const Transform& pose, const MeshTriangle& t,
     collideConvexHalfSpace(shape, pose, plane, Transform{}, margin, below);
     m.clear();
     m.normal = normal;
-    // The half-space routine reduces to 4 points over the whole shape, and may keep one within
-    // kDepthTolerance of the deepest instead of it; the support point along the normal is the
-    // exact deepest, so it goes first.
-    const Vec3 deepest = pose.apply(support(shape, pose.rotation.conjugate() * normal));
-    const Real separation = normal.dot(t.vertices[0] - deepest);
-    const Vec3 middle = deepest + (separation / 2) * normal;
-    if (separation <= margin && overTriangle(t, middle))
-        m.add(middle, separation, kDeepestId);
     for (int k = 0; k < below.pointCount; ++k) {
         const ContactPoint& c = below.points[static_cast<std::size_t>(k)];
         if (overTriangle(t, c.position))
             m.add(c.position, c.separation, c.featureId ^ kFaceRedoTag);
     }
+    const Vec3 deepest = pose.apply(support(shape, pose.rotation.conjugate() * normal));
+    const Real separation = normal.dot(t.vertices[0] - deepest);
+    const Vec3 middle = deepest + (separation / 2) * normal;
+    if (separation <= margin && overTriangle(t, middle))
+        addDeepest(m, {middle, separation, kDeepestId});
 }
 
 struct TriangleManifold {
     Manifold manifold;
     std::uint32_t triangle;
+    std::uint8_t group = 0;  ///< which of the pair's manifolds takes its points
 };
 
 /// Per-thread buffers, grown on first use and kept: no allocation in a warm step.
@@ -206,22 +235,110 @@ void keepDeepest(const std::array<ContactPoint, kMaxClipVertices>& candidates, s
         out.points[nearest] = candidates[deepest];
 }
 
-/// One manifold from the triangles' (see the file comment), in the surface's frame.
-void merge(const std::vector<TriangleManifold>& manifolds, Manifold& out) {
-    Real deepest = INFINITY;
-    Vec3 normal = Vec3::UnitZ();
-    for (const TriangleManifold& tm : manifolds) {
-        for (int k = 0; k < tm.manifold.pointCount; ++k) {
-            if (tm.manifold.points[static_cast<std::size_t>(k)].separation < deepest) {
-                deepest = tm.manifold.points[static_cast<std::size_t>(k)].separation;
-                normal = tm.manifold.normal;
+constexpr std::uint8_t kUngrouped = 0xFF;
+
+/// Sorts the triangles' manifolds into groups of like normal (see the file comment) and writes
+/// each group's normal into `normals`; returns the number of groups.
+int groupManifolds(std::vector<TriangleManifold>& manifolds,
+                   std::array<Vec3, ManifoldSet::kMaxManifolds>& normals) {
+    for (TriangleManifold& tm : manifolds)
+        tm.group = kUngrouped;
+    int groups = 0;
+    while (groups < ManifoldSet::kMaxManifolds) {
+        Real deepest = INFINITY;
+        const TriangleManifold* seed = nullptr;
+        for (const TriangleManifold& tm : manifolds) {
+            for (int k = 0; k < tm.manifold.pointCount && tm.group == kUngrouped; ++k) {
+                if (tm.manifold.points[static_cast<std::size_t>(k)].separation < deepest) {
+                    deepest = tm.manifold.points[static_cast<std::size_t>(k)].separation;
+                    seed = &tm;
+                }
             }
         }
+        if (seed == nullptr)
+            return groups;
+        const Vec3 normal = seed->manifold.normal;
+        normals[static_cast<std::size_t>(groups)] = normal;
+        for (TriangleManifold& tm : manifolds)
+            if (tm.group == kUngrouped && tm.manifold.normal.dot(normal) >= kMergeCos)
+                tm.group = static_cast<std::uint8_t>(groups);
+        ++groups;
     }
+    // More directions than manifolds: the rest join the group of the nearest normal.
+    for (TriangleManifold& tm : manifolds) {
+        if (tm.group != kUngrouped)
+            continue;
+        int nearest = 0;
+        for (int g = 1; g < groups; ++g)
+            if (tm.manifold.normal.dot(normals[static_cast<std::size_t>(g)]) >
+                tm.manifold.normal.dot(normals[static_cast<std::size_t>(nearest)]))
+                nearest = g;
+        tm.group = static_cast<std::uint8_t>(nearest);
+    }
+    return groups;
+}
+
+/// Whether `c` lies where one of the first `count` candidates does: one point found twice (by the
+/// clipping and by the half-space routine, or as the exact deepest point). The first keeps its
+/// id and takes the deeper separation: the reduction then never chooses between two ids for one
+/// point by rounding noise (a box edge's ids flipped every step), and the depth stays exact.
+bool sameAsCandidate(ContactPoint* candidates, std::size_t count, const ContactPoint& c) {
+    for (std::size_t k = 0; k < count; ++k) {
+        if ((candidates[k].position - c.position).squaredNorm() < kSamePoint * kSamePoint) {
+            candidates[k].separation = std::min(candidates[k].separation, c.separation);
+            return true;
+        }
+    }
+    return false;
+}
+
+/// Removes the candidates that lie between two others on a segment (seen along `normal`) and are
+/// no deeper than both; returns the count left. A line contact across several triangles (a
+/// capsule or cylinder on its side) gives points where it crosses every triangle edge, all
+/// equally deep and in line: the reduction weighed their zero areas by rounding noise, and the
+/// kept ones (and their ids) changed from step to step. The segment's ends carry the contact.
+/// Up to kBetweenLimit candidates (cubic); beyond, the reduction takes them as they are.
+std::size_t dropBetween(ContactPoint* candidates, std::size_t count, const Vec3& normal) {
+    constexpr std::size_t kBetweenLimit = 24;
+    if (count > kBetweenLimit)
+        return count;
+    const auto flat = [&](std::size_t k) {
+        return Vec3(candidates[k].position - normal.dot(candidates[k].position) * normal);
+    };
+    const auto between = [&](std::size_t c) {
+        const Vec3 p = flat(c);
+        for (std::size_t a = 0; a < count; ++a) {
+            for (std::size_t b = a + 1; b < count; ++b) {
+                if (a == c || b == c ||
+                    candidates[c].separation <
+                        std::min(candidates[a].separation, candidates[b].separation) - kDepthNoise)
+                    continue;
+                const Vec3 pa = flat(a), ab = flat(b) - pa;
+                const Real t = (p - pa).dot(ab) / ab.squaredNorm();
+                if (t > 0 && t < 1 && (pa + t * ab - p).squaredNorm() < kSamePoint * kSamePoint)
+                    return true;
+            }
+        }
+        return false;
+    };
+    std::array<bool, kBetweenLimit> drop;
+    for (std::size_t c = 0; c < count; ++c)
+        drop[c] = between(c);
+    std::size_t kept = 0;
+    for (std::size_t c = 0; c < count; ++c) {
+        if (!drop[c])
+            candidates[kept++] = candidates[c];
+    }
+    return kept;
+}
+
+/// The manifold of one group (see the file comment), in the surface's frame.
+void merge(const std::vector<TriangleManifold>& manifolds, int group, const Vec3& normal,
+           Manifold& out) {
     auto& candidates = scratch().candidates;
     std::size_t count = 0;
     for (const TriangleManifold& tm : manifolds) {
-        if (tm.manifold.normal.dot(normal) < kMergeCos)
+        if (tm.group != group)
             continue;
         for (int k = 0; k < tm.manifold.pointCount; ++k) {
             if (count == candidates.size()) {  // full: keep the best 4 and go on
@@ -232,9 +349,12 @@ void merge(const std::vector<TriangleManifold>& manifolds, Manifold& out) {
             }
             ContactPoint c = tm.manifold.points[static_cast<std::size_t>(k)];
             c.featureId ^= tm.triangle * kTriangleMix;
-            candidates[count++] = c;
+            if (!sameAsCandidate(candidates.data(), count, c))
+                candidates[count++] = c;
         }
     }
+    if (count > static_cast<std::size_t>(Manifold::kMaxPoints))
+        count = dropBetween(candidates.data(), count, normal);
     reduceContacts(std::span<const ContactPoint>(candidates.data(), count), normal, out);
     keepDeepest(candidates, count, out);
 }
@@ -242,8 +362,9 @@ void merge(const std::vector<TriangleManifold>& manifolds, Manifold& out) {
 }  // namespace
 
 void collideConvexMesh(const Shape& a, const Transform& poseA, const Shape& b,
-                       const Transform& poseB, Real margin, Manifold& out) {
-    out.clear();
+                       const Transform& poseB, Real margin, ManifoldSet& out) {
+    out.count = 0;
+    out.manifolds[0] = Manifold{};
     const Transform pose{poseB.applyInverse(poseA.position),
                          (poseB.rotation.conjugate() * poseA.rotation).normalized()};
     const Aabb box = boundsOf(a, pose).fattened(margin);
@@ -268,14 +389,25 @@ void collideConvexMesh(const Shape& a, const Transform& poseA, const Shape& b,
         if (tm.manifold.pointCount > 0)
             s.manifolds.push_back(tm);
     });
-    if (s.manifolds.empty())
-        return;
-    merge(s.manifolds, out);
-    out.normal = poseB.rotation * out.normal;
-    for (int k = 0; k < out.pointCount; ++k) {
-        ContactPoint& c = out.points[static_cast<std::size_t>(k)];
-        c.position = poseB.apply(c.position);
+    std::array<Vec3, ManifoldSet::kMaxManifolds> normals;
+    out.count = groupManifolds(s.manifolds, normals);
+    for (int g = 0; g < out.count; ++g) {
+        Manifold& m = out.manifolds[static_cast<std::size_t>(g)];
+        m = Manifold{};  // the pair's record copies all of it, unused points included
+        merge(s.manifolds, g, normals[static_cast<std::size_t>(g)], m);
+        m.normal = poseB.rotation * m.normal;
+        for (int k = 0; k < m.pointCount; ++k) {
+            ContactPoint& c = m.points[static_cast<std::size_t>(k)];
+            c.position = poseB.apply(c.position);
+        }
     }
+}
+
+void collideConvexMeshDeepest(const Shape& a, const Transform& poseA, const Shape& b,
+                              const Transform& poseB, Real margin, Manifold& out) {
+    thread_local ManifoldSet set;
+    collideConvexMesh(a, poseA, b, poseB, margin, set);
+    out = set.manifolds[0];
 }
 
 }  // namespace tumble::detail

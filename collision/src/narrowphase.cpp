@@ -4,6 +4,7 @@
 
 #include "tumble/collision/narrowphase.h"
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 
@@ -35,8 +36,8 @@ constexpr std::array<std::array<CollideFn, kTypeCount>, kTypeCount> makeTable() 
     set(Box, Box, &detail::collideBoxes);
     for (ShapeType convex : {Sphere, Capsule, Box, Cylinder, ConvexHull}) {
         set(convex, HalfSpace, &detail::collideConvexHalfSpace);
-        set(convex, TriangleMesh, &detail::collideConvexMesh);
-        set(convex, HeightField, &detail::collideConvexMesh);
+        set(convex, TriangleMesh, &detail::collideConvexMeshDeepest);
+        set(convex, HeightField, &detail::collideConvexMeshDeepest);
     }
     // Static geometry never meets static geometry.
     for (ShapeType a : {HalfSpace, TriangleMesh, HeightField})
@@ -47,6 +48,14 @@ constexpr std::array<std::array<CollideFn, kTypeCount>, kTypeCount> makeTable() 
 }
 
 constexpr auto kTable = makeTable();
+
+bool isSurface(ShapeType type) {
+    return type == ShapeType::TriangleMesh || type == ShapeType::HeightField;
+}
+
+bool isConvex(ShapeType type) {
+    return type != ShapeType::HalfSpace && !isSurface(type);
+}
 
 }  // namespace
 
@@ -63,6 +72,24 @@ void collide(const Shape& a, const Transform& poseA, const Shape& b, const Trans
     if (const CollideFn fn = kTable[typeB][typeA]) {
         fn(b, poseB, a, poseA, margin, out);
         out.normal = -out.normal;
+    }
+}
+
+void collide(const Shape& a, const Transform& poseA, const Shape& b, const Transform& poseB,
+             Real margin, ManifoldSet& out) {
+    const ShapeType typeA = typeOf(a);
+    const ShapeType typeB = typeOf(b);
+    if (isConvex(typeA) && isSurface(typeB)) {
+        detail::collideConvexMesh(a, poseA, b, poseB, margin, out);
+    } else if (isSurface(typeA) && isConvex(typeB)) {
+        detail::collideConvexMesh(b, poseB, a, poseA, margin, out);
+        for (int k = 0; k < std::max(out.count, 1); ++k)
+            out.manifolds[static_cast<std::size_t>(k)].normal *= -1;
+    } else {
+        // As a fresh manifold: the pair's record copies all of it, unused points included.
+        out.manifolds[0] = Manifold{};
+        collide(a, poseA, b, poseB, margin, out.manifolds[0]);
+        out.count = out.manifolds[0].pointCount > 0 ? 1 : 0;
     }
 }
 

@@ -25,9 +25,13 @@ void collideBoxes(const Shape&, const Transform&, const Shape&, const Transform&
 void collideConvexHalfSpace(const Shape&, const Transform&, const Shape&, const Transform&, Real,
                             Manifold&);
 
-/// Any convex shape (A) against a triangle mesh or height field (B) (collide_mesh.cpp).
+/// Any convex shape (A) against a triangle mesh or height field (B) (collide_mesh.cpp): one
+/// manifold per group of like normals, deepest first.
 void collideConvexMesh(const Shape&, const Transform&, const Shape&, const Transform&, Real,
-                       Manifold&);
+                       ManifoldSet&);
+/// The same, keeping the first (deepest) manifold only: the dispatch table's entry.
+void collideConvexMeshDeepest(const Shape&, const Transform&, const Shape&, const Transform&, Real,
+                              Manifold&);
 
 // General convex pairs through libccd, then clipping (collide_convex.cpp).
 void collideConvex(const Shape&, const Transform&, const Shape&, const Transform&, Real, Manifold&);

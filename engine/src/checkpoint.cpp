@@ -320,7 +320,8 @@ struct CheckpointAccess {
             if (x.state_.size() != x.pool_.size())
                 x.state_.resize(x.pool_.size());
             ContactManager::SlotState& s = x.state_[slot];
-            fields(a, r.contact, s.key, r.next, r.previous, s.alive, s.active, s.listed, s.queued);
+            fields(a, r.contact, s.key, r.next, r.previous, s.alive, s.active, s.listed, s.queued,
+                   r.nextPart, s.part);
             s.shapeA = r.contact.shapeA.index;
             s.shapeB = r.contact.shapeB.index;
             s.cleared = false;
@@ -509,6 +510,7 @@ struct CheckpointAccess {
             const ContactManager::Record& record = c.pool_[slot];
             all(record.next, edges, true, "contact edge");
             all(record.previous, edges, true, "contact edge");
+            one(record.nextPart, c.pool_.size(), true, "contact part");
             const Contact& contact = record.contact;
             if (c.state_[slot].alive &&
                 (!b.isValid(contact.bodyA) || !b.isValid(contact.bodyB) ||

@@ -185,6 +185,17 @@ void ContactManager::unlink(std::uint32_t slot, int side, BodyInfo& body) {
         pool_[next >> 1].previous[next & 1] = previous;
 }
 
+std::uint32_t ContactManager::allocateSlot() {
+    if (freeSlots_.empty()) {
+        pool_.emplace_back();
+        state_.emplace_back();
+        return static_cast<std::uint32_t>(pool_.size() - 1);
+    }
+    const std::uint32_t slot = freeSlots_.back();
+    freeSlots_.pop_back();
+    return slot;
+}
+
 void ContactManager::create(const ProxyPair& pair, const ShapeStore& shapes, BodyStore& bodies) {
     const std::uint32_t slotA = proxyToShape_[pair.first];
     const std::uint32_t slotB = proxyToShape_[pair.second];
@@ -198,15 +209,7 @@ void ContactManager::create(const ProxyPair& pair, const ShapeStore& shapes, Bod
         bodies.info[indexB].type != BodyType::Dynamic)
         return;
 
-    std::uint32_t slot;
-    if (freeSlots_.empty()) {
-        slot = static_cast<std::uint32_t>(pool_.size());
-        pool_.emplace_back();
-        state_.emplace_back();
-    } else {
-        slot = freeSlots_.back();
-        freeSlots_.pop_back();
-    }
+    const std::uint32_t slot = allocateSlot();
     Record& record = pool_[slot];
     record = Record{};
     record.contact.shapeA = shapes.idAt(slotA);
@@ -238,10 +241,18 @@ void ContactManager::markPlaced(std::uint32_t proxy) {
         placedProxies_.insert(at, proxy);
 }
 
+// A pair's further records go with it (removeShape may reach them first: they are then skipped
+// here), and its end is reported once.
 void ContactManager::destroy(std::uint32_t slot, BodyStore& bodies) {
+    if (!state_[slot].alive)
+        return;
     Record& record = pool_[slot];
-    if (events != nullptr && record.contact.manifold.pointCount > 0)
-        events->contactEnd.push_back(touchEvent(record.contact));
+    if (state_[slot].part == 0) {
+        if (events != nullptr && pairTouches(slot))
+            events->contactEnd.push_back(touchEvent(record.contact));
+        for (std::uint32_t part = record.nextPart; part != kNone; part = pool_[part].nextPart)
+            destroy(part, bodies);
+    }
     unlink(slot, 0, bodies.info[bodies.indexOf(record.contact.bodyA)]);
     unlink(slot, 1, bodies.info[bodies.indexOf(record.contact.bodyB)]);
     state_[slot].alive = false;
@@ -266,7 +277,7 @@ std::uint32_t ContactManager::find(const ProxyPair& pair, const ShapeStore& shap
         index = bodies.indexOf(shapeB.body);
     for (std::uint32_t edge = bodies.info[index].firstContact; edge != kNone;
          edge = pool_[edge >> 1].next[edge & 1]) {
-        if (state_[edge >> 1].key == pair)
+        if (state_[edge >> 1].key == pair && state_[edge >> 1].part == 0)
             return edge >> 1;
     }
     return kNone;
@@ -289,9 +300,7 @@ void ContactManager::flushActivations() {
         state.queued = false;
         return !(state.alive && state.active && !state.listed);
     });
-    const auto byKey = [this](std::uint32_t a, std::uint32_t b) {
-        return state_[a].key < state_[b].key;
-    };
+    const auto byKey = [this](std::uint32_t a, std::uint32_t b) { return precedes(a, b); };
     std::sort(activated_.begin(), activated_.end(), byKey);
     for (const std::uint32_t slot : activated_)
         state_[slot].listed = true;
@@ -358,6 +367,8 @@ void ContactManager::collideActive(const ShapeStore& shapes, BodyStore& bodies,
             __builtin_prefetch(&state_[active_[i + kAhead]]);
         const std::uint32_t slot = active_[i];
         SlotState& state = state_[slot];
+        if (state.part != 0)
+            continue;  // collided with its pair's own record
         const ShapeRecord& shapeA = shapes.records[state.shapeA];
         const ShapeRecord& shapeB = shapes.records[state.shapeB];
         const std::uint32_t indexA = bodies.indexOf(shapeA.body);
@@ -383,30 +394,134 @@ void ContactManager::collideActive(const ShapeStore& shapes, BodyStore& bodies,
                 __builtin_prefetch(ahead + line);
         }
         // The pairs skipped above hold no points: the touching ones are all here, in pair order.
-        if (collidePair(work_[i], shapes, bodies))
-            touching_.push_back(work_[i].slot);
+        collidePair(work_[i], shapes, bodies);
+    }
+    if (!addedParts_.empty()) {  // into active_ as flushActivations would; touching_ has them
+        std::sort(addedParts_.begin(), addedParts_.end(),
+                  [this](std::uint32_t a, std::uint32_t b) { return precedes(a, b); });
+        scratch_.clear();
+        std::merge(active_.begin(), active_.end(), addedParts_.begin(), addedParts_.end(),
+                   std::back_inserter(scratch_),
+                   [this](std::uint32_t a, std::uint32_t b) { return precedes(a, b); });
+        active_.swap(scratch_);
+        addedParts_.clear();
     }
 }
 
-bool ContactManager::collidePair(const PairWork& work, const ShapeStore& shapes,
+void ContactManager::collidePair(const PairWork& work, const ShapeStore& shapes,
                                  BodyStore& bodies) {
-    Manifold manifold;
+    ManifoldSet& set = manifolds_;
+    set.count = 0;
     if (work.near) {
         const SlotState& state = state_[work.slot];
         const ShapeRecord& shapeA = shapes.records[state.shapeA];
         const ShapeRecord& shapeB = shapes.records[state.shapeB];
         collide(shapeA.def.geometry, posedShape(state.shapeA, shapes, bodies), shapeB.def.geometry,
-                posedShape(state.shapeB, shapes, bodies), work.margin, manifold);
+                posedShape(state.shapeB, shapes, bodies), work.margin, set);
+    } else {
+        set.manifolds[0] = Manifold{};
+    }
+    if (set.count > 1 || pool_[work.slot].nextPart != kNone) {
+        spreadParts(work, bodies);
+        return;
     }
     Contact& contact = pool_[work.slot].contact;
     const bool was = contact.manifold.pointCount > 0;
-    const bool is = manifold.pointCount > 0;
-    carryImpulses(contact, manifold);
+    const bool is = set.count > 0;
+    carryImpulses(contact, set.manifolds[0]);
     if (was != is)
         reportTouch(contact, is, bodies, work.indexA, work.indexB);
+    if (is) {
+        wakeTouched(bodies, work.indexA, work.indexB);
+        touching_.push_back(work.slot);
+    }
+}
+
+// Each new manifold goes to the record whose last normal is nearest (within kPartCos), so its
+// points find their impulses; the others take the records left, in order, and records left over
+// are emptied. A record holds its manifold's points in one frame of reference only when its
+// normal stays put: a box shifting in a crease keeps each face's impulses on that face.
+void ContactManager::spreadParts(const PairWork& work, BodyStore& bodies) {
+    constexpr Real kPartCos = 0.7;  // about 45 degrees
+    constexpr int kMax = ManifoldSet::kMaxManifolds;
+    const ManifoldSet& set = manifolds_;
+    std::array<std::uint32_t, kMax> slots;
+    int parts = 0;
+    for (std::uint32_t s = work.slot; s != kNone; s = pool_[s].nextPart)
+        slots[static_cast<std::size_t>(parts++)] = s;
+    for (; parts < set.count; ++parts)
+        slots[static_cast<std::size_t>(parts)] = addPart(slots[static_cast<std::size_t>(parts - 1)],
+                                                         static_cast<std::uint8_t>(parts), bodies);
+    std::array<int, kMax> source;  // per record: the manifold it takes, or -1
+    source.fill(-1);
+    const auto previous = [&](int part) -> const Manifold& {
+        return pool_[slots[static_cast<std::size_t>(part)]].contact.manifold;
+    };
+    for (int k = 0; k < set.count; ++k) {
+        const Vec3& normal = set.manifolds[static_cast<std::size_t>(k)].normal;
+        int best = -1;
+        Real bestCos = kPartCos;
+        for (int p = 0; p < parts; ++p) {
+            if (source[static_cast<std::size_t>(p)] < 0 && previous(p).pointCount > 0 &&
+                previous(p).normal.dot(normal) > bestCos) {
+                best = p;
+                bestCos = previous(p).normal.dot(normal);
+            }
+        }
+        if (best >= 0)
+            source[static_cast<std::size_t>(best)] = k;
+    }
+    for (int k = 0; k < set.count; ++k) {
+        if (std::find(source.begin(), source.end(), k) != source.end())
+            continue;
+        *std::find(source.begin(), source.begin() + parts, -1) = k;
+    }
+    const bool was = pairTouches(work.slot);
+    static const Manifold kEmpty{};
+    for (int p = 0; p < parts; ++p) {
+        const int k = source[static_cast<std::size_t>(p)];
+        const std::uint32_t slot = slots[static_cast<std::size_t>(p)];
+        carryImpulses(pool_[slot].contact,
+                      k >= 0 ? set.manifolds[static_cast<std::size_t>(k)] : kEmpty);
+        if (k >= 0)
+            touching_.push_back(slot);
+    }
+    const bool is = set.count > 0;
+    if (was != is)
+        reportTouch(pool_[work.slot].contact, is, bodies, work.indexA, work.indexB);
     if (is)
         wakeTouched(bodies, work.indexA, work.indexB);
-    return is;
+}
+
+std::uint32_t ContactManager::addPart(std::uint32_t last, std::uint8_t part, BodyStore& bodies) {
+    const std::uint32_t slot = allocateSlot();  // may move pool_: nothing is held across it
+    Record& record = pool_[slot];
+    record = Record{};
+    const Contact& pair = pool_[last].contact;
+    record.contact.shapeA = pair.shapeA;
+    record.contact.shapeB = pair.shapeB;
+    record.contact.bodyA = pair.bodyA;
+    record.contact.bodyB = pair.bodyB;
+    const SlotState& owner = state_[last];
+    state_[slot] = SlotState{.key = owner.key,
+                             .shapeA = owner.shapeA,
+                             .shapeB = owner.shapeB,
+                             .alive = true,
+                             .active = true,
+                             .listed = true,
+                             .part = part};
+    link(slot, 0, bodies.info[bodies.indexOf(pair.bodyA)]);
+    link(slot, 1, bodies.info[bodies.indexOf(pair.bodyB)]);
+    pool_[last].nextPart = slot;
+    addedParts_.push_back(slot);
+    return slot;
+}
+
+bool ContactManager::pairTouches(std::uint32_t slot) const {
+    for (; slot != kNone; slot = pool_[slot].nextPart)
+        if (pool_[slot].contact.manifold.pointCount > 0)
+            return true;
+    return false;
 }
 
 const Transform& ContactManager::posedShape(std::uint32_t slot, const ShapeStore& shapes,
@@ -450,7 +565,7 @@ std::span<const Contact> ContactManager::contacts() const {
             viewOrder_.push_back(slot);
     }
     std::sort(viewOrder_.begin(), viewOrder_.end(),
-              [this](std::uint32_t a, std::uint32_t b) { return state_[a].key < state_[b].key; });
+              [this](std::uint32_t a, std::uint32_t b) { return precedes(a, b); });
     view_.clear();
     for (const std::uint32_t slot : viewOrder_)
         view_.push_back(pool_[slot].contact);

@@ -10,12 +10,19 @@
 /// solved. The contacts of a sleeping island are *parked*: kept with their manifolds and cached
 /// impulses, visited by nothing per step, and activated again when the island wakes.
 ///
+/// Several manifolds. A pair whose narrowphase gives several manifolds (a shape touching a mesh
+/// along faces of different normals; ManifoldSet) holds the first in its own record and the others
+/// in further records chained from it (Record::nextPart), each a contact of its own to the solver,
+/// the islands and the application. They are made when first needed, live as long as the pair
+/// and are collided only through it.
+///
 /// Determinism: the active list is kept sorted by pair (proxy ids), so the narrowphase and the
 /// solver see contacts in an order that depends only on the scene's history; body contact lists
 /// and pool slots are likewise history-ordered, never by address or hash.
 
 #include <array>
 #include <span>
+#include <tuple>
 #include <vector>
 
 #include "body_store.h"
@@ -133,6 +140,8 @@ private:
         /// [0] and body B's [1] contact lists.
         std::array<std::uint32_t, 2> next{kNone, kNone};
         std::array<std::uint32_t, 2> previous{kNone, kNone};
+        /// The pair's next manifold's record (see the file comment), or kNone.
+        std::uint32_t nextPart = kNone;
     };
     /// A contact's hot part, in a compact array beside pool_: what the per-step walks over all
     /// active contacts read. In a settled pile most contacts are neighbours of neighbours whose
@@ -148,12 +157,22 @@ private:
         bool active = false;
         bool listed = false;  ///< in active_ (dropped at the next narrowphase if not active)
         bool queued = false;  ///< in activated_, waiting to be listed
-        /// The record holds an empty Manifold{} and zero impulses, exactly what collideActive
-        /// writes for shapes whose boxes are apart: it may skip the record. Not saved in
+        /// The record (and the pair's further ones) holds an empty Manifold{} and zero
+        /// impulses, exactly what collideActive writes for shapes whose boxes are apart: it may
+        /// skip the record. Not saved in
         /// checkpoints (false after a load costs one full pass, never a different result).
         bool cleared = false;
+        /// Which of its pair's manifolds the record holds: 0 for the pair's own record, which
+        /// is collided, k > 0 for the further ones (see the file comment).
+        std::uint8_t part = 0;
     };
+    /// The order of active_ and touching_: by pair, a pair's records by part.
+    bool precedes(std::uint32_t a, std::uint32_t b) const {
+        return std::tie(state_[a].key, state_[a].part) < std::tie(state_[b].key, state_[b].part);
+    }
 
+    /// A free slot (reused or new) for a contact record.
+    std::uint32_t allocateSlot();
     /// Creates the contact of a new broadphase pair, if its shapes may collide.
     void create(const ProxyPair& pair, const ShapeStore& shapes, BodyStore& bodies);
     /// Moves a shape's proxy when its tight box, swept over the next step of h, left its fat box.
@@ -176,8 +195,14 @@ private:
         bool near;    ///< the boxes are within the margin: collide (else the manifold is empty)
     };
     void collideActive(const ShapeStore& shapes, BodyStore& bodies, const StepContext& context);
-    /// Whether the pair's new manifold has points.
-    bool collidePair(const PairWork& work, const ShapeStore& shapes, BodyStore& bodies);
+    /// Collides a pair, rewrites its records and lists those with points in touching_.
+    void collidePair(const PairWork& work, const ShapeStore& shapes, BodyStore& bodies);
+    /// collidePair's rewrite for a pair with several manifolds, or records for them.
+    void spreadParts(const PairWork& work, BodyStore& bodies);
+    /// Adds a record for the pair's manifold `part` after the pair's record `last`.
+    std::uint32_t addPart(std::uint32_t last, std::uint8_t part, BodyStore& bodies);
+    /// Whether any of the records of the pair at `slot` has points.
+    bool pairTouches(std::uint32_t slot) const;
     /// A shape's world pose in this narrowphase, computed at its first near pair and kept: in a
     /// pile a body has about six near pairs, each of which composed both poses from the bodies'
     /// states (3 % of pile-4000's instructions). The same function of the same state, so the
@@ -207,6 +232,8 @@ private:
     std::vector<std::uint32_t> scratch_;
     std::vector<std::uint32_t> touchingScratch_;
     std::vector<PairWork> work_;  ///< collideActive's second pass
+    ManifoldSet manifolds_;       ///< collidePair's (kept: 700 bytes, not cleared per pair)
+    std::vector<std::uint32_t> addedParts_;  ///< records addPart made, to list in active_
     struct CachedPose {
         Transform pose;
         std::uint64_t narrowphase = 0;  ///< the narrowphase it was computed in (0: none)

@@ -11,7 +11,8 @@ namespace tumble {
 
 /// A pair of shapes whose fat bounding boxes overlap, with the manifold of the last step
 /// (pointCount 0 when the shapes are apart by more than the speculative margin). The normal
-/// points from shape A to shape B.
+/// points from shape A to shape B. A pair touching along several normals (a shape on a mesh in a
+/// crease) has one Contact per normal, listed together.
 struct Contact {
     ShapeId shapeA;
     ShapeId shapeB;

@@ -32,4 +32,13 @@ struct Manifold {
     }
 };
 
+/// The manifolds of one shape pair: one for most pairs, several where a convex shape touches a
+/// triangle mesh or height field along faces of different normals (a box in a V-shaped crease),
+/// one per normal. Listed deepest first; each listed manifold has points.
+struct ManifoldSet {
+    static constexpr int kMaxManifolds = 4;
+    int count = 0;
+    std::array<Manifold, kMaxManifolds> manifolds;
+};
+
 }  // namespace tumble

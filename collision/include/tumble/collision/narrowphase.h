@@ -20,4 +20,11 @@ namespace tumble {
 void collide(const Shape& a, const Transform& poseA, const Shape& b, const Transform& poseB,
              Real margin, Manifold& out);
 
+/// Every manifold of the pair (ManifoldSet): as above for most pairs (count 0 or 1), one per
+/// group of like normals for a convex shape against a mesh or height field, where the single
+/// `collide` keeps only the first (deepest). `out.manifolds[0]` is always written: the one
+/// manifold (possibly empty) the single `collide` gives.
+void collide(const Shape& a, const Transform& poseA, const Shape& b, const Transform& poseB,
+             Real margin, ManifoldSet& out);
+
 }  // namespace tumble
