@@ -100,10 +100,15 @@ int main(int argc, char** argv) {
     app.add_option("--asleep-by", asleepBy,
                    "fail unless every body is asleep by this simulated time (s); 0: no demand")
         ->check(CLI::NonNegativeNumber);
+    bool anchors = SolverSettings{}.frictionAnchors;
+    app.add_option("--friction-anchors", anchors, "SolverSettings::frictionAnchors: true or false")
+        ->capture_default_str();
     CLI11_PARSE(app, argc, argv);
 
     const Real h = 1.0 / 60.0;
-    World world(WorldDef{.timeStep = h});
+    WorldDef def{.timeStep = h};
+    def.solver.frictionAnchors = anchors;
+    World world(def);
     // Container: a square floor of floorPerBody per body, at least 4 m wide. Waves of one layer
     // at a time, 0.4 m apart, every half second until all have fallen in.
     const testkit::Rain rain{.half = std::max<Real>(2, 0.5 * std::sqrt(floorPerBody * bodies)),

@@ -231,6 +231,10 @@ int main(int argc, char** argv) {
     app.add_flag(
         "--coloured-contacts", coloured,
         "Tumble's contact sweeps on coloured wide rows (SolverSettings::colouredContacts)");
+    bool anchors = SolverSettings{}.frictionAnchors;
+    app.add_option("--friction-anchors", anchors,
+                   "Tumble's friction anchors (SolverSettings::frictionAnchors): true or false")
+        ->capture_default_str();
     std::vector<std::string> engines;
     app.add_option(
         "--engine", engines,
@@ -274,7 +278,7 @@ int main(int argc, char** argv) {
     if (quick && only.empty())
         only = {"stack-5", "stack-20", "pyramid-20", "net-10", "net-20", "pile-1000"};
 
-    const SceneSettings settings{.colouredContacts = coloured};
+    const SceneSettings settings{.colouredContacts = coloured, .frictionAnchors = anchors};
     std::ostringstream header;
     header << "h = 1/" << number(1 / settings.timeStep, "%.0f") << " s, " << settings.iterations
            << " iterations, mu = " << number(settings.friction, "%.2f") << ", restitution 0, "

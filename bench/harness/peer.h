@@ -13,6 +13,7 @@
 
 #include "tumble/collision/mesh_data.h"
 #include "tumble/core/math.h"
+#include "tumble/core/solver_types.h"
 
 namespace tumble {
 class World;
@@ -41,6 +42,8 @@ struct SceneSettings {
     bool speculativeContacts = true;
     /// Tumble only: its contact sweeps on coloured wide rows (SolverSettings::colouredContacts).
     bool colouredContacts = false;
+    /// Tumble only: SolverSettings::frictionAnchors.
+    bool frictionAnchors = SolverSettings{}.frictionAnchors;
 };
 
 /// The pile's shapes. No cylinders: Debian's ODE is built without libccd and has no

@@ -79,6 +79,7 @@ private:
         def.solver.relaxIterations = s.iterations;
         def.enableSleep = false;  // every engine simulates every body
         def.solver.colouredContacts = s.colouredContacts;
+        def.solver.frictionAnchors = s.frictionAnchors;
         if (s.correction == SceneSettings::Correction::Baumgarte)
             def.solver.stabilisation = Stabilisation::Baumgarte;
         else if (s.correction == SceneSettings::Correction::SplitImpulse)

@@ -256,7 +256,9 @@ void bindSettings(py::module_& m) {
         .field("spring_solve", &SolverSettings::springSolve, "SpringSolve")
         .field("project_springs", &SolverSettings::projectSprings, "")
         .field("joint_geometric_stiffness", &SolverSettings::jointGeometricStiffness, "")
-        .field("joint_solve", &SolverSettings::jointSolve, "SpringSolve");
+        .field("joint_solve", &SolverSettings::jointSolve, "SpringSolve")
+        .field("friction_anchors", &SolverSettings::frictionAnchors,
+               "sticking contacts held in place (split impulse only)");
     Struct<WorldDef>(m, "WorldDef", "World settings.")
         .field("gravity", &WorldDef::gravity, "(m/s^2)")
         .field("time_step", &WorldDef::timeStep, "h (s), > 0")

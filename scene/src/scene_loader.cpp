@@ -38,6 +38,7 @@ SolverSettings parseSolver(JsonObject o) {
     s.slop = o.positive("slop", s.slop, true);
     s.restitutionThreshold = o.positive("restitutionThreshold", s.restitutionThreshold, true);
     s.warmStart = o.boolean("warmStart", s.warmStart);
+    s.frictionAnchors = o.boolean("frictionAnchors", s.frictionAnchors);
     o.finish();
     try {
         checkSolverSettings(s);

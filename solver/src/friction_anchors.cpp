@@ -35,23 +35,42 @@ Real share(Real size, Real limit) {
     return limit > 0 ? size / limit : std::numeric_limits<Real>::infinity();
 }
 
+// A manifold whose anchors all lie within this of each other (m) is left out of the pass: it is
+// held in velocity, and its anchors pull once it drifts further (1 % of a millimetre). Resting
+// contacts drift by the solve's residual, far less, so a pile at rest skips the pass.
+constexpr Real kDeadband = 1e-5;
+
+bool drifting(const ContactConstraint& c, const Vec3* drifts) {
+    if (c.friction == 0)
+        return false;
+    for (int i = 0; i < c.pointCount; ++i)
+        if (drifts[i].squaredNorm() > kDeadband * kDeadband)
+            return true;
+    return false;
+}
+
+// The inverse of a face's normal block, regularised: it is singular (three degrees of freedom,
+// four rows), and the regularisation picks the minimum-norm split, as in solveNormalBlock.
+Mat4 normalBlockInverse(const ContactConstraint& c) {
+    const int n = c.pointCount;
+    Mat4 k = Mat4::Identity();
+    k.topLeftCorner(n, n) = c.normalBlock.topLeftCorner(n, n);
+    const Real scale = k.diagonal().head(n).maxCoeff();
+    k.diagonal().head(n).array() += 1e-9 * scale;
+    return k.ldlt().solve(Mat4::Identity());
+}
+
 // Holds the manifold's normal pseudo-velocities where the pass found them (rows[i].z()), with
 // impulses of either sign: the face's normal block answers the tangential pull's moment with a
 // shift of load between its points, as the velocity solve does; one-sided, it would lift the
 // body off its inner points instead.
 void holdNormals(SolverBody& a, SolverBody& b, const ContactConstraint& c,
-                 std::span<const Vec3> rows) {
+                 std::span<const Vec3> rows, const Mat4& inverse) {
     const int n = c.pointCount;
     Vec4 gap = Vec4::Zero();
     for (int i = 0; i < n; ++i)
         gap(i) = normalSpeed(a, b, c.normal, c.points[i]) - rows[i].z();
-    // A face's block is singular (three degrees of freedom, four rows): the regularisation picks
-    // the minimum-norm split, as in solveNormalBlock.
-    Mat4 k = Mat4::Identity();
-    k.topLeftCorner(n, n) = c.normalBlock.topLeftCorner(n, n);
-    const Real scale = k.diagonal().head(n).maxCoeff();
-    k.diagonal().head(n).array() += 1e-9 * scale;
-    const Vec4 impulse = -k.ldlt().solve(gap);
+    const Vec4 impulse = -(inverse * gap);
     for (int i = 0; i < n; ++i)
         applyNormal(a, b, c.normal, c.points[i], impulse(i));
 }
@@ -84,28 +103,35 @@ void FrictionAnchorPass::run(std::span<const SolverBody> bodies,
                              std::span<const ContactConstraint> constraints,
                              std::span<const Vec3> drifts, std::vector<PseudoVelocity>& pseudo,
                              Real inverseH) {
+    active_.clear();
+    for (std::size_t j = 0; j < constraints.size(); ++j)
+        if (drifting(constraints[j], &drifts[4 * j]))
+            active_.push_back(static_cast<std::uint32_t>(j));
+    if (active_.empty())
+        return;
     bodies_.assign(bodies.begin(), bodies.end());
     for (std::size_t i = 0; i < bodies_.size(); ++i) {
         bodies_[i].linearVelocity = pseudo[i].linear;
         bodies_[i].angularVelocity = pseudo[i].angular;
     }
-    rows_.assign(4 * constraints.size(), Vec3::Zero());
-    for (std::size_t j = 0; j < constraints.size(); ++j) {
-        const ContactConstraint& c = constraints[j];
+    rows_.assign(4 * active_.size(), Vec3::Zero());
+    inverses_.resize(active_.size());
+    for (std::size_t k = 0; k < active_.size(); ++k) {
+        const ContactConstraint& c = constraints[active_[k]];
         for (int i = 0; i < c.pointCount; ++i)
-            rows_[4 * j + i].z() =
+            rows_[4 * k + i].z() =
                 normalSpeed(bodies_[c.bodyA], bodies_[c.bodyB], c.normal, c.points[i]);
+        if (c.pointCount > 1)
+            inverses_[k] = normalBlockInverse(c);
     }
     for (int sweep = 0; sweep < kSweeps; ++sweep) {
-        for (std::size_t j = 0; j < constraints.size(); ++j) {
-            const ContactConstraint& c = constraints[j];
-            if (c.friction == 0)
-                continue;
+        for (std::size_t k = 0; k < active_.size(); ++k) {
+            const ContactConstraint& c = constraints[active_[k]];
             SolverBody& a = bodies_[c.bodyA];
             SolverBody& b = bodies_[c.bodyB];
-            pullPoints(a, b, c, &drifts[4 * j], &rows_[4 * j], inverseH);
+            pullPoints(a, b, c, &drifts[4 * active_[k]], &rows_[4 * k], inverseH);
             if (c.pointCount > 1)
-                holdNormals(a, b, c, std::span(rows_).subspan(4 * j, c.pointCount));
+                holdNormals(a, b, c, std::span(rows_).subspan(4 * k, c.pointCount), inverses_[k]);
         }
     }
     for (std::size_t i = 0; i < bodies_.size(); ++i) {

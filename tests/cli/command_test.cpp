@@ -369,3 +369,35 @@ TEST(Override, WalksObjectsAndArraysAndParsesJsonValues) {
     EXPECT_THROW(tumble::cli::applyOverride(doc, "bodies.4.position=[0,0,0]"),
                  tumble::InvalidArgument);
 }
+
+// `world.solver.frictionAnchors` reaches the world: a cube carried by a kinematic slab turning
+// at 1.5 rad/s (slip needs mu g / r = 3.92 rad^2/s^2, omega^2 r = 2.25) holds its spot with
+// anchors; without, velocity-level friction lets it creep outward by about (omega h)^2 r / 2 a
+// step, which nothing pulls back.
+TEST(SceneSolver, FrictionAnchorsFromTheFileHoldACubeOnATurningSlab) {
+    const auto radiusAfter = [](bool anchors) {
+        const tumble::cli::Json document = tumble::cli::Json::parse(
+            std::string(
+                R"({"world": {"sleep": {"enabled": false}, "solver": {"frictionAnchors": )") +
+            (anchors ? "true" : "false") + R"(}},
+              "materials": {"default": {"friction": 0.4}},
+              "bodies": [
+                {"type": "kinematic", "position": [0, 0, -0.1], "angularVelocity": [0, 0, 1.5],
+                 "shapes": [{"type": "box", "halfExtents": [2, 2, 0.1]}]},
+                {"position": [1, 0, 0.1], "linearVelocity": [0, 1.5, 0],
+                 "angularVelocity": [0, 0, 1.5],
+                 "shapes": [{"type": "box", "halfExtents": [0.1, 0.1, 0.1]}]}]})");
+        const tumble::cli::Scene scene = tumble::cli::parseScene(document, "slab");
+        EXPECT_EQ(scene.world.solver.frictionAnchors, anchors);
+        tumble::cli::BuiltScene built = tumble::cli::buildScene(scene);
+        for (int i = 0; i < 120; ++i)
+            EXPECT_TRUE(built.world.step().ok());
+        return built.world.centerOfMass(built.bodies[1]).head<2>().norm();
+    };
+    EXPECT_LT(std::abs(radiusAfter(true) - 1), 1e-3);
+    EXPECT_GT(radiusAfter(false) - 1, 1e-2);
+    EXPECT_EQ(tumbleRun({"run", "stack", "--time", "0.1", "--quiet", "--set",
+                         "world.solver.frictionAnchors=1"})
+                  .status,
+              2);
+}

@@ -37,9 +37,12 @@ public:
              std::span<const Vec3> drifts, std::vector<PseudoVelocity>& pseudo, Real inverseH);
 
 private:
-    std::vector<SolverBody> bodies_;  ///< the bodies at their pseudo-velocities
+    std::vector<SolverBody> bodies_;     ///< the bodies at their pseudo-velocities
+    std::vector<std::uint32_t> active_;  ///< the constraints whose anchors drifted apart
     std::vector<Vec3>
-        rows_;  ///< per point: tangential impulses (N s), normal pseudo-velocity (m/s)
+        rows_;  ///< per active point: tangential impulses (N s), normal pseudo-velocity (m/s)
+    /// per active manifold: its regularised normal block's inverse (friction_anchors.cpp)
+    std::vector<Eigen::Matrix<Real, 4, 4>> inverses_;
 };
 
 }  // namespace tumble
