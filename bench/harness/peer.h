@@ -13,6 +13,7 @@
 
 #include "tumble/collision/mesh_data.h"
 #include "tumble/core/math.h"
+#include "tumble/core/solver_types.h"
 
 namespace tumble {
 class World;
@@ -39,8 +40,9 @@ struct SceneSettings {
     /// they touch, as its default (speculative contacts, whose target velocity Bullet sums with
     /// the restitution's)? false keeps only touching ones (a contact processing threshold of 0).
     bool speculativeContacts = true;
-    /// Tumble only: its contact sweeps on coloured wide rows (SolverSettings::colouredContacts).
-    bool colouredContacts = false;
+    /// Tumble only: its contact sweeps on coloured wide rows (SolverSettings::colouredContacts,
+    /// Tumble's default) or the scalar sweep in constraint order.
+    bool colouredContacts = SolverSettings{}.colouredContacts;
 };
 
 /// The pile's shapes. No cylinders: Debian's ODE is built without libccd and has no
