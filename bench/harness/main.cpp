@@ -227,10 +227,10 @@ int main(int argc, char** argv) {
                    "the study's oscillator and bouncing ball in the peers instead (for Fig. 4 and "
                    "Fig. 5 beside Tumble's): write study-peers-{oscillator,bounce}.csv to this "
                    "directory");
-    bool coloured = false;
-    app.add_flag(
-        "--coloured-contacts", coloured,
-        "Tumble's contact sweeps on coloured wide rows (SolverSettings::colouredContacts)");
+    bool coloured = SolverSettings{}.colouredContacts;
+    app.add_flag("--coloured-contacts,!--scalar-contacts", coloured,
+                 "Tumble's contact sweeps on coloured wide rows (SolverSettings::colouredContacts) "
+                 "or, --scalar-contacts, the scalar sweep in constraint order");
     bool anchors = SolverSettings{}.frictionAnchors;
     app.add_option("--friction-anchors", anchors,
                    "Tumble's friction anchors (SolverSettings::frictionAnchors): true or false")

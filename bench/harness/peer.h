@@ -40,8 +40,9 @@ struct SceneSettings {
     /// they touch, as its default (speculative contacts, whose target velocity Bullet sums with
     /// the restitution's)? false keeps only touching ones (a contact processing threshold of 0).
     bool speculativeContacts = true;
-    /// Tumble only: its contact sweeps on coloured wide rows (SolverSettings::colouredContacts).
-    bool colouredContacts = false;
+    /// Tumble only: its contact sweeps on coloured wide rows (SolverSettings::colouredContacts)
+    /// or the scalar sweep in constraint order.
+    bool colouredContacts = SolverSettings{}.colouredContacts;
     /// Tumble only: SolverSettings::frictionAnchors.
     bool frictionAnchors = SolverSettings{}.frictionAnchors;
 };

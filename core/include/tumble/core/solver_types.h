@@ -60,8 +60,9 @@ struct SolverSettings {
     /// outward (engine/src/anchor_table.h).
     bool frictionAnchors = false;
     /// The contact sweeps on wide rows of four manifolds coloured so that none of a colour
-    /// share a moving body (contact_rows.h): the same rows, updated in colour order.
-    bool colouredContacts = false;
+    /// share a moving body (contact_rows.h): the same rows, updated in colour order. Off: the
+    /// scalar sweep in constraint order (ContactSolver), kept for comparison.
+    bool colouredContacts = true;
 };
 
 enum class JointType : std::uint8_t {
