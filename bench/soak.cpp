@@ -77,6 +77,12 @@ int main(int argc, char** argv) {
     // A rigid point contact resists neither spin about its normal nor rolling: spheres on the
     // floor spun in place at 0.25-0.66 rad/s for 5 s and more and kept the pile's island awake.
     // Wood on wood has a contact patch of a few mm and rolling resistance of about 1 % of r:
+    int biased = 0;  // the engine's default sweeps unless set (the sweep-budget study)
+    int relax = -1;
+    app.add_option("--iterations", biased, "biased sweeps (default: the engine's)")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--relax", relax, "relax sweeps (default: the engine's)")
+        ->check(CLI::NonNegativeNumber);
     // the rain scene's 2 mm for both (Material::spinningFriction, rollingFriction).
     double spinningFriction = 0.002;
     double rollingFriction = 0.002;
@@ -108,6 +114,8 @@ int main(int argc, char** argv) {
     const Real h = 1.0 / 60.0;
     WorldDef def{.timeStep = h};
     def.solver.frictionAnchors = anchors;
+    def.solver.iterations = biased > 0 ? biased : def.solver.iterations;
+    def.solver.relaxIterations = relax >= 0 ? relax : def.solver.relaxIterations;
     World world(def);
     // Container: a square floor of floorPerBody per body, at least 4 m wide. Waves of one layer
     // at a time, 0.4 m apart, every half second until all have fallen in.

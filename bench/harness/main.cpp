@@ -163,6 +163,14 @@ bool selected(const std::vector<std::string>& filter, const std::string& name) {
     });
 }
 
+// Tumble's sweeps in the header: "B biased + R relax sweeps".
+std::string budget(const SceneSettings& s) {
+    const int biased = s.tumbleIterations >= 0 ? s.tumbleIterations : s.iterations;
+    const int relax = s.tumbleRelaxIterations >= 0 ? s.tumbleRelaxIterations : s.iterations;
+    return std::to_string(biased) + " biased + " + std::to_string(relax) + " relax sweeps" +
+           (s.colouredContacts ? ", coloured" : "");
+}
+
 // Default simulated time per run: long enough for a stack to fall if it will, a pile to land
 // and a net to open and spring back, short enough for the whole run to take a few minutes.
 double defaultDuration(const Scene& scene, bool quick) {
@@ -235,6 +243,14 @@ int main(int argc, char** argv) {
     app.add_option("--friction-anchors", anchors,
                    "Tumble's friction anchors (SolverSettings::frictionAnchors): true or false")
         ->capture_default_str();
+    int tumbleIterations = -1;
+    int tumbleRelax = -1;
+    app.add_option("--tumble-iterations", tumbleIterations,
+                   "Tumble's biased sweeps (default: as many as the peers' iterations)")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--tumble-relax", tumbleRelax,
+                   "Tumble's relax sweeps (default: as many as the peers' iterations)")
+        ->check(CLI::NonNegativeNumber);
     std::vector<std::string> engines;
     app.add_option(
         "--engine", engines,
@@ -278,12 +294,16 @@ int main(int argc, char** argv) {
     if (quick && only.empty())
         only = {"stack-5", "stack-20", "pyramid-20", "net-10", "net-20", "pile-1000"};
 
-    const SceneSettings settings{.colouredContacts = coloured, .frictionAnchors = anchors};
+    const SceneSettings settings{.colouredContacts = coloured,
+                                 .frictionAnchors = anchors,
+                                 .tumbleIterations = tumbleIterations,
+                                 .tumbleRelaxIterations = tumbleRelax};
     std::ostringstream header;
     header << "h = 1/" << number(1 / settings.timeStep, "%.0f") << " s, " << settings.iterations
-           << " iterations, mu = " << number(settings.friction, "%.2f") << ", restitution 0, "
-           << runs << " runs per scene and engine (median [min, max]); piles: built once, "
-           << kPileLanding << " s of landing untimed, then the runs are consecutive windows\n";
+           << " iterations (Tumble " << budget(settings)
+           << "), mu = " << number(settings.friction, "%.2f") << ", restitution 0, " << runs
+           << " runs per scene and engine (median [min, max]); piles: built once, " << kPileLanding
+           << " s of landing untimed, then the runs are consecutive windows\n";
     const std::string tableHead =
         "| scene | engine | wall s per sim s: median [min, max] | real-time factor | top drift "
         "(m) | deepest penetration (m) | energy error | collapsed at (s) | time / Tumble | CPU s "

@@ -45,6 +45,10 @@ struct SceneSettings {
     bool colouredContacts = SolverSettings{}.colouredContacts;
     /// Tumble only: SolverSettings::frictionAnchors.
     bool frictionAnchors = SolverSettings{}.frictionAnchors;
+    /// Tumble only: its biased and relax sweeps (the sweep-budget study, bench/README.md); a
+    /// negative count runs `iterations` of each, as Bullet runs its split-impulse pass.
+    int tumbleIterations = -1;
+    int tumbleRelaxIterations = -1;
 };
 
 /// The pile's shapes. No cylinders: Debian's ODE is built without libccd and has no

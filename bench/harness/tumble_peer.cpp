@@ -74,9 +74,9 @@ public:
 private:
     static WorldDef worldDef(const SceneSettings& s) {
         WorldDef def{.gravity = s.gravity, .timeStep = s.timeStep};
-        def.solver.iterations = s.iterations;
-        // As many split-impulse sweeps as velocity sweeps, as Bullet runs its split-impulse pass.
-        def.solver.relaxIterations = s.iterations;
+        def.solver.iterations = s.tumbleIterations >= 0 ? s.tumbleIterations : s.iterations;
+        def.solver.relaxIterations =
+            s.tumbleRelaxIterations >= 0 ? s.tumbleRelaxIterations : s.iterations;
         def.enableSleep = false;  // every engine simulates every body
         def.solver.colouredContacts = s.colouredContacts;
         def.solver.frictionAnchors = s.frictionAnchors;
