@@ -122,8 +122,9 @@ TEST(MeshCrease, ShapesRestStillInACreaseWithForcesCarryingTheirWeight) {
             // Not asserted for the cylinder: at 150 degrees its ids change in 83 of 240 steps
             // (one of its two points at an end comes and goes; not yet pinned down, the
             // half-spaces keep theirs), though it rests within the bounds above.
-            if (typeOf(c.shape) != ShapeType::Cylinder)
+            if (typeOf(c.shape) != ShapeType::Cylinder) {
                 EXPECT_EQ(mesh.idChanges, 0) << "feature ids persist";
+            }
             EXPECT_EQ(mesh.begins, 1) << "the pair begins touching once";
             EXPECT_LT((mesh.last - planes.last).norm(), 5e-4) << "rests where the half-spaces";
         }
