@@ -198,6 +198,55 @@ Real dropPileOnRoughMesh(bool checkCandidates) {
     return lowest;
 }
 
+/// Lowest centre of mass, over 3 s at 60 Hz, of a tetrahedron dropped from 0.8 m onto a jagged
+/// mesh (vertex v at z = 0.08 sin(1.7 v), 12 x 12 cells of 0.5 m), its body origin `lift` above its
+/// base face.
+struct HullDrop {
+    Real lowest = INFINITY;  ///< (m)
+};
+HullDrop dropHullOnJaggedMesh(Real lift, const Vec3& spot, Real yaw) {
+    TriangleMeshData data = flatGrid(12, 0.5);
+    for (std::size_t v = 0; v < data.vertices.size(); ++v)
+        data.vertices[v].z() = 0.08 * std::sin(1.7 * static_cast<Real>(v));
+    World world;
+    const BodyId ground = world.createBody(BodyDef{.type = BodyType::Static});
+    world.createShape(ground, ShapeDef{.geometry = TriangleMesh::fromData(data)});
+    const std::vector<Vec3> points{Vec3(0.2, 0, -lift), Vec3(-0.1, 0.17, -lift),
+                                   Vec3(-0.1, -0.17, -lift), Vec3(0, 0, 0.25 - lift)};
+    BodyDef def;
+    def.position = spot + Vec3(0, 0, 0.8);
+    def.orientation = Quat(Eigen::AngleAxis<Real>(yaw, Vec3::UnitZ()));
+    def.allowSleep = false;
+    const BodyId body = world.createBody(def);
+    world.createShape(body, ShapeDef{.geometry = ConvexHull::fromPoints(points)});
+    HullDrop drop;
+    for (int step = 0; step < 180; ++step) {
+        EXPECT_TRUE(world.step().ok());
+        drop.lowest = std::min(drop.lowest, world.centerOfMass(body).z());
+    }
+    return drop;
+}
+
+// A hull whose body origin sits on its base (or anywhere off its middle) lands on a jagged mesh
+// and stays on it. Reported on a branch before several manifolds per pair were merged: such a
+// tetrahedron fell through at 3.9 m/s (the side a triangle is met from is judged from the shape's
+// origin). Not reproduced since; this guards it. Resting is not asserted: on slopes up to 0.3
+// one drop still moves at 0.05 m/s after 2 s (not yet explained).
+TEST(MeshContact, HullsWithOffCentreOriginsRestOnAJaggedMesh) {
+    std::mt19937 rng(2611);
+    std::uniform_real_distribution<Real> unit(0, 1);
+    for (const Real lift : {0.0, 0.06, 0.125, 0.25}) {
+        for (int k = 0; k < 6; ++k) {
+            const Vec3 spot(4 * unit(rng) - 2, 4 * unit(rng) - 2, 0);
+            const HullDrop drop = dropHullOnJaggedMesh(lift, spot, 6.3 * unit(rng));
+            SCOPED_TRACE("origin " + std::to_string(lift) + " m above the base, drop " +
+                         std::to_string(k));
+            // The centre of mass sits 0.0625 m above the base: never below the wave's trough.
+            EXPECT_GT(drop.lowest, -0.08) << "fell through the mesh";
+        }
+    }
+}
+
 TEST(MeshContact, HierarchyCandidatesEqualBruteForceAtEveryStepOfAFallingPile) {
     dropPileOnRoughMesh(true);
 }
