@@ -6,11 +6,15 @@
 // half way through.
 //
 // The tolerance was set before measuring (a quarter of the thinnest body, a box 0.2 m tall), at
-// first for each body's lowest point. The lowest points exceed it while the pile lands (hull
-// 0.106 m, box 0.059 m; spheres, capsules and cylinders 0.03 m): a hull or box landing on the
-// triangles sinks deeper than on a plane, which belongs to the mesh narrowphase
-// (collide_mesh.cpp). They are measured and printed here by kind, not asserted, until it is
-// fixed; the centres are asserted.
+// first for each body's lowest point. The lowest points exceed it on the terrain, and not as a
+// landing transient: the same pile on a flat height field or a half-space (same drop heights
+// above the ground; TUMBLE_TUNNEL_COMPARE=1 runs and prints both) goes at most 0.032 m deep, and
+// the two flat grounds agree within 4 mm by kind. On the terrain a sphere reaches 0.046 m (vs
+// 0.010 flat) and a hull 0.096 m (vs 0.029), after the landing (steps 101 and 106 of 120): a
+// sphere over an internal edge between two triangles 2.9 degrees apart gets no contact point
+// for a 1 cm band of heights (TerrainTunnel.DISABLED_SphereOverInternalEdgeKeepsItsContact)
+// and falls 3 steps into the terrain. So the lowest points are printed, not asserted, until the
+// mesh narrowphase is fixed; the centres are asserted.
 
 #include <gtest/gtest.h>
 
@@ -19,6 +23,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <vector>
 
 #include "bench/harness/terrain.h"
@@ -87,15 +92,41 @@ Vec3 lowestPoint(const Shape& shape, const Transform& pose) {
     return lowest(std::get<ConvexHull>(shape).data->vertices);
 }
 
-TEST(TerrainTunnel, ThousandBodyPileNeverSinksBelowTheHeightField) {
-    const HeightFieldData field = rollingTerrain();
+/// The ground a pile lands on: the rolling terrain, or flat at the terrain's mean height as a
+/// height field or a half-space.
+enum class Ground { Terrain, FlatField, HalfSpace };
+
+struct PileDepths {
+    Real deepestCentre = -INFINITY;  ///< (m) below the ground under it
+    int deepestStep = 0;
+    int sunk = 0;                        ///< body-steps with the centre deeper than `allowed`
+    std::array<Real, 5> lowestOfKind{};  ///< deepest lowest point by kind (m)
+    std::array<int, 5> lowestStep{}, lowestBody{};
+    std::array<Vec3, 5> lowestAt{}, lowestVelocity{};
+    double seconds = 0;
+};
+
+/// Drops the pile onto `ground` (each body at the same height above the ground under it) and
+/// measures how deep the centres and lowest points go over 120 steps.
+PileDepths dropPile(Ground ground, Real allowed) {
+    const HeightFieldData terrain = rollingTerrain();
+    HeightFieldData field = terrain;
+    Real mean = 0;
+    for (Real h : terrain.heights)
+        mean += h / static_cast<Real>(terrain.heights.size());
+    if (ground != Ground::Terrain)
+        std::fill(field.heights.begin(), field.heights.end(), mean);
+    const auto groundHeight = [&](Real x, Real y) {
+        return ground == Ground::Terrain ? terrainHeight(field, x, y) : mean;
+    };
     WorldDef def;
     def.timeStep = 1.0 / 60;
     World world(def);
-    const BodyId ground = world.createBody(BodyDef{.type = BodyType::Static});
-    world.createShape(
-        ground, ShapeDef{.geometry = HeightField::fromData(field), .material = {.friction = 0.5}});
-    const Real middle = 0.5 * (field.columns - 1) * field.spacingX;
+    const BodyId base = world.createBody(BodyDef{.type = BodyType::Static});
+    const Shape surface = ground == Ground::HalfSpace ? Shape(HalfSpace{Vec3::UnitZ(), mean})
+                                                      : Shape(HeightField::fromData(field));
+    world.createShape(base, ShapeDef{.geometry = surface, .material = {.friction = 0.5}});
+    const Real side = (field.columns - 1) * field.spacingX, middle = 0.5 * side;
     std::vector<ShapeId> shapes;
     std::vector<BodyId> bodies;
     for (int k = 0; k < kBodies; ++k) {
@@ -103,49 +134,87 @@ TEST(TerrainTunnel, ThousandBodyPileNeverSinksBelowTheHeightField) {
         const Real x = middle + kPitch * (cell % kPerSide - 0.5 * (kPerSide - 1));
         const Real y = middle + kPitch * (cell / kPerSide - 0.5 * (kPerSide - 1));
         BodyDef body;
-        body.position = Vec3(x, y, terrainHeight(field, x, y) + 0.4 + kPitch * layer);
+        body.position = Vec3(x, y, groundHeight(x, y) + 0.4 + kPitch * layer);
         body.orientation = Quat(Eigen::AngleAxis<Real>(0.6 * k, Vec3(1, 2, 3).normalized()));
         bodies.push_back(world.createBody(body));
         shapes.push_back(world.createShape(
             bodies.back(),
             ShapeDef{.geometry = pileShape(k), .material = {.friction = 0.5, .density = 700}}));
     }
-    const Real side = (field.columns - 1) * field.spacingX;
-    const Real allowed = world.settings().solver.slop + kTolerance;
+    PileDepths out;
     constexpr int kSteps = 120;  // 2 s: the top layer (3.1 m up) lands by ~0.8 s, then settles
-    Real deepestCentre = -INFINITY;
-    int deepestStep = 0, sunk = 0;
-    std::array<Real, 5> lowestOfKind{};  // deepest lowest point by kind (m)
     const auto start = std::chrono::steady_clock::now();
     for (int step = 1; step <= kSteps; ++step) {
-        ASSERT_TRUE(world.step().ok()) << "step " << step;
+        EXPECT_TRUE(world.step().ok()) << "step " << step;
         for (std::size_t k = 0; k < shapes.size(); ++k) {
             const Vec3 c = world.centerOfMass(bodies[k]);
-            ASSERT_TRUE(c.x() > 0 && c.y() > 0 && c.x() < side && c.y() < side)
-                << "body " << k << " left the terrain at step " << step;
-            const Real depth = terrainHeight(field, c.x(), c.y()) - c.z();
-            if (depth > deepestCentre) {
-                deepestCentre = depth;
-                deepestStep = step;
+            EXPECT_TRUE(c.x() > 0 && c.y() > 0 && c.x() < side && c.y() < side)
+                << "body " << k << " left the ground at step " << step;
+            const Real depth = groundHeight(c.x(), c.y()) - c.z();
+            if (depth > out.deepestCentre) {
+                out.deepestCentre = depth;
+                out.deepestStep = step;
             }
-            sunk += depth > allowed ? 1 : 0;
+            out.sunk += depth > allowed ? 1 : 0;
             const Vec3 p =
                 lowestPoint(world.shapeDef(shapes[k]).geometry, world.shapeTransform(shapes[k]));
-            lowestOfKind[k % 5] =
-                std::max(lowestOfKind[k % 5], terrainHeight(field, p.x(), p.y()) - p.z());
+            const Real below = groundHeight(p.x(), p.y()) - p.z();
+            if (below > out.lowestOfKind[k % 5]) {
+                out.lowestOfKind[k % 5] = below;
+                out.lowestStep[k % 5] = step;
+                out.lowestBody[k % 5] = int(k);
+                out.lowestAt[k % 5] = p;
+                out.lowestVelocity[k % 5] = world.linearVelocity(bodies[k]);
+            }
         }
     }
-    const std::chrono::duration<double> took = std::chrono::steady_clock::now() - start;
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+}
+
+void print(const char* name, const PileDepths& d) {
     std::printf(
-        "terrain tunnel: %d bodies x %d steps in %.2f s; deepest centre %.4f m below the "
-        "surface (step %d; allowed: slop + %.2f = %.3f m)\n",
-        kBodies, kSteps, took.count(), deepestCentre, deepestStep, kTolerance, allowed);
-    std::printf(
-        "  deepest lowest point by kind (box, sphere, capsule, cylinder, hull): %.4f %.4f %.4f "
-        "%.4f %.4f m\n",
-        lowestOfKind[0], lowestOfKind[1], lowestOfKind[2], lowestOfKind[3], lowestOfKind[4]);
-    EXPECT_EQ(sunk, 0) << "body-steps with the centre deeper than " << allowed << " m";
-    EXPECT_LE(deepestCentre, allowed);
+        "%s: %d bodies in %.2f s; deepest centre %.4f m (step %d); deepest lowest point by kind "
+        "(box, sphere, capsule, cylinder, hull): %.4f %.4f %.4f %.4f %.4f m\n",
+        name, kBodies, d.seconds, d.deepestCentre, d.deepestStep, d.lowestOfKind[0],
+        d.lowestOfKind[1], d.lowestOfKind[2], d.lowestOfKind[3], d.lowestOfKind[4]);
+    for (int k = 0; k < 5; ++k)
+        std::printf("   kind %d: step %d body %d at (%.3f %.3f %.3f) v (%.2f %.2f %.2f)\n", k,
+                    d.lowestStep[k], d.lowestBody[k], d.lowestAt[k].x(), d.lowestAt[k].y(),
+                    d.lowestAt[k].z(), d.lowestVelocity[k].x(), d.lowestVelocity[k].y(),
+                    d.lowestVelocity[k].z());
+}
+
+TEST(TerrainTunnel, ThousandBodyPileNeverSinksBelowTheHeightField) {
+    const Real allowed = WorldDef{}.solver.slop + kTolerance;
+    const PileDepths terrain = dropPile(Ground::Terrain, allowed);
+    print("terrain", terrain);
+    if (std::getenv("TUMBLE_TUNNEL_COMPARE")) {
+        print("flat height field", dropPile(Ground::FlatField, allowed));
+        print("half-space", dropPile(Ground::HalfSpace, allowed));
+    }
+    EXPECT_EQ(terrain.sunk, 0) << "body-steps with the centre deeper than " << allowed << " m";
+    EXPECT_LE(terrain.deepestCentre, allowed);
+}
+
+// The pile's sphere 876 at step 100, found falling into the terrain: its contact with the
+// height field has no point while the sphere is 4-5 cm into it. Its centre lies over the
+// internal edge between two triangles (normals (0.437, 0.275, 0.856) and (0.481, 0.268, 0.835));
+// the contact redone along either face normal falls over the other triangle and is dropped by
+// both (collide_mesh.cpp's internal-edge rule). Disabled: it fails until that is fixed.
+TEST(TerrainTunnel, DISABLED_SphereOverInternalEdgeKeepsItsContact) {
+    const HeightFieldData field = rollingTerrain();
+    for (int q = 0; q <= 15; ++q) {
+        const Real z = 0.40 - 0.002 * q;  // 0.128 ... 0.098 m above the surface along its normal
+        World world(WorldDef{.gravity = Vec3::Zero()});
+        const BodyId ground = world.createBody(BodyDef{.type = BodyType::Static});
+        world.createShape(ground, ShapeDef{.geometry = HeightField::fromData(field)});
+        const BodyId ball = world.createBody(BodyDef{.position = Vec3(4.798421, 6.476185, z)});
+        world.createShape(ball, ShapeDef{.geometry = Sphere{0.15}});
+        ASSERT_TRUE(world.step().ok());
+        ASSERT_EQ(world.contacts().size(), 1u) << "z = " << z;
+        EXPECT_GT(world.contacts()[0].manifold.pointCount, 0) << "z = " << z;
+    }
 }
 
 }  // namespace
