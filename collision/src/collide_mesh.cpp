@@ -12,13 +12,13 @@
 // one vertex or an edge) has only internal edges (mesh_shape.h), the contact is redone along the
 // triangle's face normal: the shape's points below the triangle's plane (the half-space routine)
 // that lie over the triangle itself. Over the neighbour they are dropped; the neighbour's own
-// contact holds them. A contact on the face gets those points too, beside the clipped ones
-// (which reach the triangle's edges, e.g. at the rim of a table): the half-space routine's
-// depth is exact where clipping approximates (a cylinder's rim by a polygon). So does a triangle
-// for which the pair routine found nothing: the half-space routine is closed-form and cheap, and
-// catches what an iterative query (EPA on a cylinder against a prism this thin) may miss. This is
-// the active-edge idea of Jolt and Bullet's internal-edge utility, with the depth measured along
-// the replaced normal.
+// contact holds them. (Not over a convex fold's wedge: see onFaceNormal.) A contact on the face
+// gets those points too, beside the clipped ones (which reach the triangle's edges, e.g. at the rim
+// of a table): the half-space routine's depth is exact where clipping approximates (a cylinder's
+// rim by a polygon). So does a triangle for which the pair routine found nothing: the half-space
+// routine is closed-form and cheap, and catches what an iterative query (EPA on a cylinder against
+// a prism this thin) may miss. This is the active-edge idea of Jolt and Bullet's internal-edge
+// utility, with the depth measured along the replaced normal.
 //
 // The per-triangle manifolds then make up to ManifoldSet::kMaxManifolds manifolds, one per group
 // of like normals (as Jolt keeps a manifold per sub-shape pair and merges those of near normals):
@@ -51,6 +51,9 @@ constexpr Real kFeatureTolerance = 1e-9;
 /// manifold: a curved surface's neighbours (internal edges are flat within 3 degrees), but not
 /// the two faces of a crease (a V of 170 degrees folds by 10).
 constexpr Real kMergeCos = 0.99619469809174555;
+/// cos(kFlatEdgeAngle): an internal edge's contact normal within this of the face normal may lie
+/// between the face normals of a convex fold (onFaceNormal).
+constexpr Real kWedgeCos = 0.99862953475457383;
 /// Points of one group closer than this (m) are one contact point.
 constexpr Real kSamePoint = 1e-6;
 /// Depths this close (m) are equal but for rounding: far below what the solver or a caller sees.
@@ -59,6 +62,8 @@ constexpr Real kDepthNoise = 1e-10;
 constexpr std::uint32_t kTriangleMix = 0x9E3779B1u;
 /// Marks the ids of points redone along a face normal.
 constexpr std::uint32_t kFaceRedoTag = 0x5BD1E995u;
+/// Marks the ids of points kept with the face normal though the redo dropped them (onFaceNormal).
+constexpr std::uint32_t kUnclaimedTag = 0x68E31DA4u;
 /// The id of the shape's deepest point along a face normal.
 constexpr std::uint32_t kDeepestId = 0x7FFFFFFFu;
 
@@ -202,10 +207,28 @@ struct TriangleManifold {
     std::uint8_t group = 0;  ///< which of the pair's manifolds takes its points
 };
 
+/// A contact on an internal edge or vertex, kept with the face normal `normal` (as Jolt's inactive
+/// edges keep theirs): its points and depths are the pair routine's, the true distance to this
+/// triangle. Used only when no triangle kept a point: over a convex internal edge (a fold within
+/// kFlatEdgeAngle) a rounded shape whose centre lies between the two face normals has its
+/// deepest point along either normal over the other triangle, so the redo along each face
+/// drops it (a band as wide as r times the fold). Only contacts whose normal lies within
+/// kFlatEdgeAngle of the face normal qualify: further out the shape lies beyond the fold's
+/// wedge, where a neighbour holds it. Taken when something else holds the shape, they would add
+/// points off the exact ones (by up to r sin(kFlatEdgeAngle) on a flat mesh), so they are not.
+TriangleManifold onFaceNormal(const TriangleManifold& edge, const Vec3& normal) {
+    TriangleManifold out = edge;
+    out.manifold.normal = normal;
+    for (int k = 0; k < out.manifold.pointCount; ++k)
+        out.manifold.points[static_cast<std::size_t>(k)].featureId ^= kUnclaimedTag;
+    return out;
+}
+
 /// Per-thread buffers, grown on first use and kept: no allocation in a warm step.
 struct Scratch {
     TrianglePrism prism;
     std::vector<TriangleManifold> manifolds;
+    std::vector<TriangleManifold> unclaimed;  ///< see onFaceNormal
     std::array<ContactPoint, kMaxClipVertices> candidates;
 };
 
@@ -371,6 +394,7 @@ void collideConvexMesh(const Shape& a, const Transform& poseA, const Shape& b,
     const Real backReach = kBackReach * boundingRadius(a);
     Scratch& s = scratch();
     s.manifolds.clear();
+    s.unclaimed.clear();
     forEachTriangle(b, box, [&](const MeshTriangle& t) {
         TriangleManifold tm{{}, t.index};
         collideConvex(a, pose, s.prism.shape(t), Transform{}, margin, tm.manifold);
@@ -384,11 +408,15 @@ void collideConvexMesh(const Shape& a, const Transform& poseA, const Shape& b,
             // On the face from the shape's side: clipped points reach the triangle's edges.
             if (edges == 0 && tm.manifold.normal.dot(normal) > 0)
                 s.manifolds.push_back(tm);
+            if (edges != 0 && tm.manifold.normal.dot(normal) >= kWedgeCos)
+                s.unclaimed.push_back(onFaceNormal(tm, normal));
         }
         alongFace(a, pose, t, normal, margin, tm.manifold);
         if (tm.manifold.pointCount > 0)
             s.manifolds.push_back(tm);
     });
+    if (s.manifolds.empty())
+        std::swap(s.manifolds, s.unclaimed);  // see onFaceNormal
     std::array<Vec3, ManifoldSet::kMaxManifolds> normals;
     out.count = groupManifolds(s.manifolds, normals);
     for (int g = 0; g < out.count; ++g) {

@@ -200,9 +200,10 @@ TEST(TerrainTunnel, ThousandBodyPileNeverSinksBelowTheHeightField) {
 // The pile's sphere 876 at step 100, found falling into the terrain: its contact with the
 // height field has no point while the sphere is 4-5 cm into it. Its centre lies over the
 // internal edge between two triangles (normals (0.437, 0.275, 0.856) and (0.481, 0.268, 0.835));
-// the contact redone along either face normal falls over the other triangle and is dropped by
-// both (collide_mesh.cpp's internal-edge rule). Disabled: it fails until that is fixed.
-TEST(TerrainTunnel, DISABLED_SphereOverInternalEdgeKeepsItsContact) {
+// the contact redone along either face normal fell over the other triangle and was dropped by
+// both (collide_mesh.cpp's internal-edge rule); now the pair routine's contact on the edge is
+// kept with the face normal when no triangle keeps a point (onFaceNormal).
+TEST(TerrainTunnel, SphereOverInternalEdgeKeepsItsContact) {
     const HeightFieldData field = rollingTerrain();
     for (int q = 0; q <= 15; ++q) {
         const Real z = 0.40 - 0.002 * q;  // 0.128 ... 0.098 m above the surface along its normal
