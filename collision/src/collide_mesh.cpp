@@ -29,10 +29,13 @@
 // the one a half-space in that face's plane gives. Feature ids mix the triangle index into the
 // pair routine's ids, so a point keeps its id while the same triangle and features touch.
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "clipping.h"
+#include "gjk.h"
 #include "mesh_triangles.h"
 #include "pair_routines.h"
 
@@ -64,6 +67,8 @@ constexpr std::uint32_t kTriangleMix = 0x9E3779B1u;
 constexpr std::uint32_t kFaceRedoTag = 0x5BD1E995u;
 /// Marks the ids of points kept with the face normal though the redo dropped them (onFaceNormal).
 constexpr std::uint32_t kUnclaimedTag = 0x68E31DA4u;
+/// Marks the ids of points kept below an internal edge (offerGap).
+constexpr std::uint32_t kGapTag = 0x2545F491u;
 /// The id of the shape's deepest point along a face normal.
 constexpr std::uint32_t kDeepestId = 0x7FFFFFFFu;
 
@@ -180,10 +185,94 @@ void addDeepest(Manifold& m, const ContactPoint& c) {
         m.points[nearest] = c;
 }
 
+/// A point below a triangle's plane that the redo along its face normal dropped as lying over a
+/// neighbour, while it may lie where no triangle's projection reaches (gapPoint).
+struct GapPoint {
+    ContactPoint point;
+    Vec3 normal;      ///< the triangle's face normal, from the shape into it
+    Vec3 shapePoint;  ///< the point on the shape it stands for
+    Vec3 core;        ///< the centre of the shape's rounding there (shapePoint if none)
+    bool inside;      ///< whether `core` lies below the triangle's plane
+    std::uint32_t triangle;
+};
+
+/// How far (m, in the plane) p lies outside the triangle (0 over it); `pastActive` tells whether
+/// one of the edges it lies beyond is active.
+Real outsideDistance(const MeshTriangle& t, const Vec3& p, bool& pastActive) {
+    int outside = 0;
+    Real farthest = 0;
+    pastActive = false;
+    for (std::size_t k = 0; k < 3; ++k) {
+        const Vec3& a = t.vertices[k];
+        const Vec3 edge = t.vertices[(k + 1) % 3] - a;
+        const Real out = -edge.cross(p - a).dot(t.normal) / edge.norm();
+        if (out <= kFeatureTolerance)
+            continue;
+        pastActive = pastActive || ((t.activeEdges >> k) & 1u) != 0;
+        ++outside;
+        farthest = std::max(farthest, out);
+    }
+    if (outside < 2)
+        return farthest;
+    Real nearest = INFINITY;  // beyond two edges: the distance to their vertex
+    for (const Vec3& v : t.vertices) {
+        const Vec3 d = p - v;
+        nearest = std::min(nearest, Vec3(d - d.dot(t.normal) * t.normal).norm());
+    }
+    return nearest;
+}
+
+/// Offers `c` (a point the redo along `normal` dropped) to the gap points: below the plane and
+/// beyond internal edges by no more than its depth (45 degrees). Below a concave internal edge
+/// (a valley), a point of the shape within the edge's wedge projects onto neither face, so each
+/// face's redo drops it; a box corner there had no contact. Its depth is its distance to this
+/// triangle (to the edge: the exact distance to the surface in the wedge). Kept only if no
+/// triangle keeps the same point of the shape (collideConvexMesh): over a convex fold of
+/// kFlatEdgeAngle the thin sliver between the plane and the neighbour lies beyond the edge by
+/// 1 / tan(kFlatEdgeAngle) times its depth, so no point there qualifies.
+void offerGap(const MeshTriangle& t, const ContactPoint& c, const Vec3& normal, Real rounding,
+              std::vector<GapPoint>& gaps) {
+    if (!(c.separation < 0))
+        return;
+    bool pastActive;
+    const Real beyond = outsideDistance(t, c.position, pastActive);
+    if (pastActive || beyond > -c.separation)
+        return;
+    const Vec3 shapePoint = c.position - (c.separation / 2) * normal;
+    for (const GapPoint& g : gaps)
+        if (g.triangle == t.index && (g.shapePoint - shapePoint).norm() < kSamePoint)
+            return;
+    gaps.push_back({{c.position, c.separation, c.featureId ^ kGapTag},
+                    normal,
+                    shapePoint,
+                    shapePoint - rounding * normal,
+                    rounding + c.separation < 0,
+                    t.index});
+}
+
+/// The distance (m) from p to the triangle.
+Real distanceTo(const MeshTriangle& t, const Vec3& p) {
+    bool pastActive;
+    return std::hypot(t.normal.dot(p - t.vertices[0]), outsideDistance(t, p, pastActive));
+}
+
+/// Sets the gap points' depths: a point of the shape in an edge's wedge is nearest to an edge or
+/// vertex, so its depth is its distance to the nearest of `triangles` (a rounded shape's: its
+/// core point's, less or plus the rounding), not its depth below its own triangle's plane.
+void measureGaps(std::vector<GapPoint>& gaps, const std::vector<MeshTriangle>& triangles,
+                 Real rounding) {
+    for (GapPoint& g : gaps) {
+        Real nearest = INFINITY;
+        for (const MeshTriangle& t : triangles)
+            nearest = std::min(nearest, distanceTo(t, g.core));
+        g.point.separation = g.inside ? -(nearest + rounding) : nearest - rounding;
+    }
+}
+
 /// Redoes a contact along the face normal `normal` (from the shape into the triangle; see the
-/// file comment).
+/// file comment). Points dropped as lying over a neighbour are offered to `gaps`.
 void alongFace(const Shape& shape, const Transform& pose, const MeshTriangle& t, const Vec3& normal,
-               Real margin, Manifold& m) {
+               Real margin, Manifold& m, std::vector<GapPoint>& gaps) {
     const Shape plane = HalfSpace{-normal, -normal.dot(t.vertices[0])};
     Manifold below;
     collideConvexHalfSpace(shape, pose, plane, Transform{}, margin, below);
@@ -193,12 +282,19 @@ void alongFace(const Shape& shape, const Transform& pose, const MeshTriangle& t,
         const ContactPoint& c = below.points[static_cast<std::size_t>(k)];
         if (overTriangle(t, c.position))
             m.add(c.position, c.separation, c.featureId ^ kFaceRedoTag);
+        else
+            offerGap(t, {c.position, c.separation, c.featureId ^ kFaceRedoTag}, normal,
+                     roundingRadius(shape), gaps);
     }
     const Vec3 deepest = pose.apply(support(shape, pose.rotation.conjugate() * normal));
     const Real separation = normal.dot(t.vertices[0] - deepest);
     const Vec3 middle = deepest + (separation / 2) * normal;
-    if (separation <= margin && overTriangle(t, middle))
+    if (separation > margin)
+        return;
+    if (overTriangle(t, middle))
         addDeepest(m, {middle, separation, kDeepestId});
+    else
+        offerGap(t, {middle, separation, kDeepestId}, normal, roundingRadius(shape), gaps);
 }
 
 struct TriangleManifold {
@@ -229,12 +325,63 @@ struct Scratch {
     TrianglePrism prism;
     std::vector<TriangleManifold> manifolds;
     std::vector<TriangleManifold> unclaimed;  ///< see onFaceNormal
+    std::vector<GapPoint> gaps;
+    std::vector<MeshTriangle> triangles;  ///< all under the shape's box
     std::array<ContactPoint, kMaxClipVertices> candidates;
 };
 
 Scratch& scratch() {
     thread_local Scratch s;
     return s;
+}
+
+/// Whether another triangle than g's own holds g's point of the shape: one kept a point of the
+/// same id (for a rounded shape, the same core: its point lies elsewhere along each normal); or
+/// the point lies on or below one's plane and over it (inside the solid it bounds) and that one
+/// kept points (among the first `kept` of `manifolds`); or a gap point of another triangle with
+/// the same id is nearer, or as near and earlier (a point below a vertex is offered by every
+/// triangle around it; one stands for it).
+bool heldElsewhere(const std::vector<MeshTriangle>& triangles, const std::vector<GapPoint>& gaps,
+                   const std::vector<TriangleManifold>& manifolds, std::size_t kept,
+                   const GapPoint& g) {
+    const auto end = manifolds.begin() + static_cast<std::ptrdiff_t>(kept);
+    const auto keeps = [&](std::uint32_t triangle) {
+        return std::any_of(manifolds.begin(), end,
+                           [&](const TriangleManifold& tm) { return tm.triangle == triangle; });
+    };
+    const std::uint32_t redoId = g.point.featureId ^ kGapTag;
+    const bool keptAsIs = std::any_of(manifolds.begin(), end, [&](const TriangleManifold& tm) {
+        return std::any_of(tm.manifold.points.begin(),
+                           tm.manifold.points.begin() + tm.manifold.pointCount,
+                           [&](const ContactPoint& c) { return c.featureId == redoId; });
+    });
+    const bool under = std::any_of(triangles.begin(), triangles.end(), [&](const MeshTriangle& t) {
+        return t.index != g.triangle && t.normal.dot(g.shapePoint - t.vertices[0]) <= 0 &&
+               overTriangle(t, g.shapePoint) && keeps(t.index);
+    });
+    return keptAsIs || under || std::any_of(gaps.begin(), gaps.end(), [&](const GapPoint& other) {
+               if (other.triangle == g.triangle || other.point.featureId != g.point.featureId)
+                   return false;
+               const Real nearer = other.point.separation - g.point.separation;
+               return nearer > kDepthNoise || (nearer >= -kDepthNoise && &other < &g);
+           });
+}
+
+/// Adds the gap points (offerGap) no other triangle holds, each to a manifold of its triangle
+/// with that face normal.
+void addGaps(const std::vector<GapPoint>& gaps, const std::vector<MeshTriangle>& triangles,
+             std::vector<TriangleManifold>& manifolds) {
+    const std::size_t kept = manifolds.size();
+    for (const GapPoint& g : gaps) {
+        if (!(g.point.separation < 0) || heldElsewhere(triangles, gaps, manifolds, kept, g))
+            continue;
+        if (manifolds.size() == kept || manifolds.back().triangle != g.triangle ||
+            manifolds.back().manifold.pointCount == Manifold::kMaxPoints) {
+            manifolds.push_back({{}, g.triangle});
+            manifolds.back().manifold.normal = g.normal;
+        }
+        manifolds.back().manifold.add(g.point.position, g.point.separation, g.point.featureId);
+    }
 }
 
 /// reduceContacts may keep a point within kDepthTolerance of the deepest instead of it (for
@@ -395,8 +542,11 @@ void collideConvexMesh(const Shape& a, const Transform& poseA, const Shape& b,
     Scratch& s = scratch();
     s.manifolds.clear();
     s.unclaimed.clear();
+    s.gaps.clear();
+    s.triangles.clear();
     forEachTriangle(b, box, [&](const MeshTriangle& t) {
         TriangleManifold tm{{}, t.index};
+        s.triangles.push_back(t);
         collideConvex(a, pose, s.prism.shape(t), Transform{}, margin, tm.manifold);
         const Vec3 normal = intoTriangle(pose, t, backReach);
         if (tm.manifold.pointCount > 0) {
@@ -411,10 +561,12 @@ void collideConvexMesh(const Shape& a, const Transform& poseA, const Shape& b,
             if (edges != 0 && tm.manifold.normal.dot(normal) >= kWedgeCos)
                 s.unclaimed.push_back(onFaceNormal(tm, normal));
         }
-        alongFace(a, pose, t, normal, margin, tm.manifold);
+        alongFace(a, pose, t, normal, margin, tm.manifold, s.gaps);
         if (tm.manifold.pointCount > 0)
             s.manifolds.push_back(tm);
     });
+    measureGaps(s.gaps, s.triangles, roundingRadius(a));
+    addGaps(s.gaps, s.triangles, s.manifolds);
     if (s.manifolds.empty())
         std::swap(s.manifolds, s.unclaimed);  // see onFaceNormal
     std::array<Vec3, ManifoldSet::kMaxManifolds> normals;
