@@ -12,13 +12,13 @@
 // one vertex or an edge) has only internal edges (mesh_shape.h), the contact is redone along the
 // triangle's face normal: the shape's points below the triangle's plane (the half-space routine)
 // that lie over the triangle itself. Over the neighbour they are dropped; the neighbour's own
-// contact holds them. (Not over a convex fold's wedge: see onFaceNormal.) A contact on the face
-// gets those points too, beside the clipped ones (which reach the triangle's edges, e.g. at the rim
-// of a table): the half-space routine's depth is exact where clipping approximates (a cylinder's
-// rim by a polygon). So does a triangle for which the pair routine found nothing: the half-space
-// routine is closed-form and cheap, and catches what an iterative query (EPA on a cylinder against
-// a prism this thin) may miss. This is the active-edge idea of Jolt and Bullet's internal-edge
-// utility, with the depth measured along the replaced normal.
+// contact holds them; where no face's projection reaches, see offerGap and onFaceNormal. A contact
+// on the face gets those points too, beside the clipped ones (which reach the triangle's edges,
+// e.g. at the rim of a table): the half-space routine's depth is exact where clipping approximates
+// (a cylinder's rim by a polygon). So does a triangle for which the pair routine found nothing: the
+// half-space routine is closed-form and cheap, and catches what an iterative query (EPA on a
+// cylinder against a prism this thin) may miss. This is the active-edge idea of Jolt and Bullet's
+// internal-edge utility, with the depth measured along the replaced normal.
 //
 // The per-triangle manifolds then make up to ManifoldSet::kMaxManifolds manifolds, one per group
 // of like normals (as Jolt keeps a manifold per sub-shape pair and merges those of near normals):
