@@ -6,15 +6,20 @@
 // half way through.
 //
 // The tolerance was set before measuring (a quarter of the thinnest body, a box 0.2 m tall), at
-// first for each body's lowest point. The lowest points exceed it on the terrain, and not as a
+// first for each body's lowest point. The lowest points exceeded it on the terrain, and not as a
 // landing transient: the same pile on a flat height field or a half-space (same drop heights
-// above the ground; TUMBLE_TUNNEL_COMPARE=1 runs and prints both) goes at most 0.032 m deep, and
-// the two flat grounds agree within 4 mm by kind. On the terrain a sphere reaches 0.046 m (vs
-// 0.010 flat) and a hull 0.096 m (vs 0.029), after the landing (steps 101 and 106 of 120): a
-// sphere over an internal edge between two triangles 2.9 degrees apart gets no contact point
-// for a 1 cm band of heights (TerrainTunnel.DISABLED_SphereOverInternalEdgeKeepsItsContact)
-// and falls 3 steps into the terrain. So the lowest points are printed, not asserted, until the
-// mesh narrowphase is fixed; the centres are asserted.
+// above the ground; the half-space pile always runs, TUMBLE_TUNNEL_COMPARE=1 adds the flat
+// height field) goes at most 0.032 m deep, and the two flat grounds agree within 4 mm by kind. On
+// the terrain a sphere reached 0.046 m (vs 0.010 flat) and a hull 0.096 m (vs 0.029): a sphere over
+// an internal edge between two triangles 2.9 degrees apart got no contact point for a 1 cm band of
+// heights (TerrainTunnel.SphereOverInternalEdgeKeepsItsContact) and fell 3 steps into the terrain.
+// With that fixed (collide_mesh.cpp, offerGap and onFaceNormal), the lowest points of boxes,
+// spheres, capsules and cylinders on the terrain lie within kLikeFlat (1 cm, set before
+// measuring) of the same pile's on a half-space: measured 0.015, 0.006, 0.009 and 0.014 m on the
+// terrain, 0.032, 0.010, 0.017 and 0.023 m on the half-space. Hulls are not asserted: 0.048 m vs
+// 0.029, from contacts on active edges whose normal lies far outside the edge's normal cone (a hull
+// corner 4 cm under the terrain pushed sideways and down by normals such as (-1, 0, -0.02): the
+// thin prism's least way out is through its side).
 
 #include <gtest/gtest.h>
 
@@ -36,6 +41,7 @@ constexpr int kBodies = 1000;
 constexpr int kPerSide = 12;       // bodies per layer side
 constexpr Real kPitch = 0.45;      // (m) between bodies in a layer
 constexpr Real kTolerance = 0.05;  // (m) beyond the slop; see the file comment
+constexpr Real kLikeFlat = 0.01;   // (m) lowest points on the terrain beyond the half-space's
 
 Shape pileShape(int k) {
     switch (k % 5) {
@@ -189,12 +195,16 @@ TEST(TerrainTunnel, ThousandBodyPileNeverSinksBelowTheHeightField) {
     const Real allowed = WorldDef{}.solver.slop + kTolerance;
     const PileDepths terrain = dropPile(Ground::Terrain, allowed);
     print("terrain", terrain);
-    if (std::getenv("TUMBLE_TUNNEL_COMPARE")) {
+    const PileDepths halfSpace = dropPile(Ground::HalfSpace, allowed);
+    if (std::getenv("TUMBLE_TUNNEL_COMPARE"))
         print("flat height field", dropPile(Ground::FlatField, allowed));
-        print("half-space", dropPile(Ground::HalfSpace, allowed));
-    }
+    print("half-space", halfSpace);
     EXPECT_EQ(terrain.sunk, 0) << "body-steps with the centre deeper than " << allowed << " m";
     EXPECT_LE(terrain.deepestCentre, allowed);
+    for (int kind = 0; kind < 4; ++kind)  // not hulls: see the file comment
+        EXPECT_LE(terrain.lowestOfKind[static_cast<std::size_t>(kind)],
+                  halfSpace.lowestOfKind[static_cast<std::size_t>(kind)] + kLikeFlat)
+            << "kind " << kind;
 }
 
 // The pile's sphere 876 at step 100, found falling into the terrain: its contact with the
