@@ -63,25 +63,6 @@ std::pair<MeshTriangle, int> randomEdge(const Shape& surface, std::mt19937& rng)
     return {found, k % 3};
 }
 
-Shape randomShape(std::mt19937& rng, int kind) {
-    std::uniform_real_distribution<Real> size(0.1, 0.25);
-    switch (kind) {
-        case 0:
-            return Sphere{size(rng)};
-        case 1:
-            return Capsule{size(rng), size(rng)};
-        case 2:
-            return Box{Vec3(size(rng), size(rng), size(rng))};
-        default: {
-            std::vector<Vec3> points;
-            std::uniform_real_distribution<Real> unit(-1, 1);
-            for (int k = 0; k < 12; ++k)
-                points.push_back(0.2 * Vec3(unit(rng), unit(rng), unit(rng)));
-            return ConvexHull::fromPoints(points);
-        }
-    }
-}
-
 /// How far (m) `shape` at `pose` must move along `up` to clear every triangle near it, each as
 /// the column 1 m deep below it (the solid under a height-field-like surface): conservative
 /// advancement from 0.3 m up, each step the least distance to the columns.
@@ -108,7 +89,6 @@ struct EdgeFigures {
 /// One random pose over an internal edge of `surface` (see the file comment), checked.
 void checkPose(const Shape& surface, std::mt19937& rng, int kind, EdgeFigures& f) {
     std::uniform_real_distribution<Real> u(0, 1);
-    std::normal_distribution<Real> n;
     const auto [t, edge] = randomEdge(surface, rng);
     ASSERT_EQ(t.activeEdges, 0) << "the surface's folds are within kFlatEdgeAngle";
     const Vec3 a = t.vertices[static_cast<std::size_t>(edge)];
@@ -116,8 +96,8 @@ void checkPose(const Shape& surface, std::mt19937& rng, int kind, EdgeFigures& f
     const Vec3 point = a + (0.05 + 0.9 * u(rng)) * (b - a);
     const Real tilt = (2 * u(rng) - 1) * kFlatEdgeAngle;
     const Vec3 along = Eigen::AngleAxis<Real>(tilt, (b - a).normalized()) * t.normal;
-    const Shape shape = randomShape(rng, kind);
-    Transform pose{Vec3::Zero(), Quat(n(rng), n(rng), n(rng), n(rng)).normalized()};
+    const Shape shape = testing::randomConvex(rng, kind == 3 ? 4 : kind);  // not cylinders
+    Transform pose{Vec3::Zero(), testing::randomRotation(rng)};
     // The shape's deepest point along -along lies `depth` below the edge point.
     const Real depth = 0.05 * u(rng);
     pose.position =

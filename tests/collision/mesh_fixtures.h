@@ -2,7 +2,9 @@
 // Test geometry for triangle meshes, shared by the collision and engine tests.
 
 #include <cstdint>
+#include <random>
 #include <set>
+#include <vector>
 
 #include "mesh_triangles.h"
 #include "tumble/collision/mesh_data.h"
@@ -42,6 +44,34 @@ HeightFieldData heightGrid(std::uint32_t columns, std::uint32_t rows, Real spaci
         for (std::uint32_t i = 0; i < columns; ++i)
             grid.heights.push_back(height(i, j));
     return grid;
+}
+
+/// A random convex shape of about 0.3-0.6 m: kind 0 sphere, 1 capsule, 2 box, 3 cylinder, else
+/// a hull.
+inline Shape randomConvex(std::mt19937& rng, int kind) {
+    std::uniform_real_distribution<Real> size(0.15, 0.3);
+    switch (kind) {
+        case 0:
+            return Sphere{size(rng)};
+        case 1:
+            return Capsule{size(rng), size(rng)};
+        case 2:
+            return Box{Vec3(size(rng), size(rng), size(rng))};
+        case 3:
+            return Cylinder{size(rng), size(rng)};
+        default: {
+            std::vector<Vec3> points;
+            std::uniform_real_distribution<Real> unit(-1, 1);
+            for (int k = 0; k < 12; ++k)
+                points.push_back(0.25 * Vec3(unit(rng), unit(rng), unit(rng)));
+            return ConvexHull::fromPoints(points);
+        }
+    }
+}
+
+inline Quat randomRotation(std::mt19937& rng) {
+    std::normal_distribution<Real> n;
+    return Quat(n(rng), n(rng), n(rng), n(rng)).normalized();
 }
 
 /// The triangles the hierarchy offers for `box`, and those a test of every triangle finds.

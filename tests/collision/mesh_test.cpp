@@ -22,6 +22,8 @@ namespace {
 
 using testing::flatGrid;
 using testing::heightGrid;
+using testing::randomConvex;
+using testing::randomRotation;
 
 /// The 12 triangles of a box's surface, outward normals.
 TriangleMeshData boxMesh(const Vec3& e) {
@@ -131,33 +133,6 @@ TEST(TriangleMesh, HierarchyCandidatesEqualBruteForceForRandomBoxes) {
         const testing::Candidates c = testing::candidatesFor(g, box);
         ASSERT_EQ(c.walked, c.brute) << "trial " << trial;
     }
-}
-
-/// A random convex shape of about 0.3-0.6 m.
-Shape randomConvex(std::mt19937& rng, int kind) {
-    std::uniform_real_distribution<Real> size(0.15, 0.3);
-    switch (kind) {
-        case 0:
-            return Sphere{size(rng)};
-        case 1:
-            return Capsule{size(rng), size(rng)};
-        case 2:
-            return Box{Vec3(size(rng), size(rng), size(rng))};
-        case 3:
-            return Cylinder{size(rng), size(rng)};
-        default: {
-            std::vector<Vec3> points;
-            std::uniform_real_distribution<Real> unit(-1, 1);
-            for (int k = 0; k < 12; ++k)
-                points.push_back(0.25 * Vec3(unit(rng), unit(rng), unit(rng)));
-            return ConvexHull::fromPoints(points);
-        }
-    }
-}
-
-Quat randomRotation(std::mt19937& rng) {
-    std::normal_distribution<Real> n;
-    return Quat(n(rng), n(rng), n(rng), n(rng)).normalized();
 }
 
 Real deepest(const Manifold& m) {
