@@ -193,19 +193,18 @@ void SolveStage::holdAnchors(const BodyStore& bodies, const ContactManager& cont
     anchorPass_.run(solverBodies_, constraints, anchorDrifts_, pseudo_, context.inverseH);
 }
 
-// The rows at the positions the step ended on, and what each must correct (m): returns the
-// largest. Only the geometry: the rows are prepared once a correction is known to be needed.
+// The rows' geometry at the positions the step ended on, and what each must correct (m): returns
+// the largest. The rows are copied and prepared once a correction is known to be needed.
 Real SolveStage::projectionErrors(const BodyStore& bodies, const SpringStore& springs,
                                   const StepContext& context) {
-    projectedRows_.resize(springRows_.size());
+    projectedGeometry_.resize(springRows_.size());
     projectionError_.resize(springRows_.size());
     Real worst = 0;
     for (std::size_t j = 0; j < springRows_.size(); ++j) {
         const SpringRow& solved = springRows_[j];
         const SpringDef& def = springs.defs[rowSpring_[j]];
         const RowBodies& ends = rowBodies_[j];  // the bodies cannot change within a step
-        SpringRow& row = projectedRows_[j];
-        row = solved;
+        ProjectedGeometry& row = projectedGeometry_[j];
         const Vec3 pA = anchorAt(bodies, ends.a, def.localAnchorA);
         const Vec3 pB = ends.world ? def.localAnchorB : anchorAt(bodies, ends.b, def.localAnchorB);
         const Vec3 d = pB - pA;
@@ -213,15 +212,13 @@ Real SolveStage::projectionErrors(const BodyStore& bodies, const SpringStore& sp
         row.direction = row.length > 0 ? Vec3(d / row.length) : solved.direction;
         row.rA = pA - bodies.motion[ends.a].center;
         row.rB = ends.world ? Vec3::Zero() : Vec3(pB - bodies.motion[ends.b].center);
-        row.impulse = 0;
-        row.spectralRadius = 0;  // a position correction: the element's whole stiffness
         const bool taut = !solved.tensionOnly || solved.impulse < 0;
         // A taut element: what the step's linearisation believed its length to be, against
         // the true one. A slack thread: whatever stretched it past its rest length without a
         // pull (contacts pushing its ends apart).
         Real error = taut ? row.length - solved.direction.dot(row.length * row.direction)
-                          : std::max<Real>(0, row.length - row.restLength);
-        if (error <= kNegligibleStretch * row.restLength)
+                          : std::max<Real>(0, row.length - solved.restLength);
+        if (error <= kNegligibleStretch * solved.restLength)
             error = 0;  // rounding: not worth a factorisation
         // A resolved element's turning and catch are the scheme's own second-order error
         // (spring_row.h); correcting them made the net-10 sweep's error 2-3x larger at h =
@@ -251,6 +248,17 @@ void SolveStage::projectSprings(BodyStore& bodies, const SpringStore& springs,
         s.inverseMass = bodies.inertia[i].inverseMass;
         const Mat3 rotation = m.orientation.toRotationMatrix();
         s.inverseInertia = rotation * bodies.inertia[i].inverseInertiaLocal * rotation.transpose();
+    }
+    projectedRows_.assign(springRows_.begin(), springRows_.end());
+    for (std::size_t j = 0; j < projectedRows_.size(); ++j) {
+        SpringRow& row = projectedRows_[j];
+        const ProjectedGeometry& geometry = projectedGeometry_[j];
+        row.length = geometry.length;
+        row.direction = geometry.direction;
+        row.rA = geometry.rA;
+        row.rB = geometry.rB;
+        row.impulse = 0;
+        row.spectralRadius = 0;  // a position correction: the element's whole stiffness
     }
     prepareSpringRows(projectedBodies_, projectedRows_, context.h, false);
     for (std::size_t j = 0; j < projectedRows_.size(); ++j) {

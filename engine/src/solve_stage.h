@@ -61,7 +61,8 @@ private:
     std::span<ContactConstraint> buildConstraints(const BodyStore& bodies, const ShapeStore& shapes,
                                                   const ContactManager& contacts,
                                                   const StepContext& context);
-    /// projectSprings()'s rows at the new positions and their errors; returns the largest (m).
+    /// projectSprings()'s rows' geometry at the new positions and their errors; returns the
+    /// largest (m).
     Real projectionErrors(const BodyStore& bodies, const SpringStore& springs,
                           const StepContext& context);
     /// Friction anchors (split impulse): this solve's drifts and the anchor pass on pseudo_.
@@ -80,6 +81,15 @@ private:
     // projectSprings(): the rows at the new configuration, bodies at rest, the corrections.
     SpringBlockSolver projector_;
     std::vector<SpringRow> projectedRows_;
+    /// Each row's geometry at the new configuration: the rows themselves are copied only when
+    /// a correction is needed (most steps need none, and a row is ~300 bytes).
+    struct ProjectedGeometry {
+        Vec3 direction;
+        Vec3 rA;
+        Vec3 rB;
+        Real length;
+    };
+    std::vector<ProjectedGeometry> projectedGeometry_;
     std::vector<Real> projectionError_;  ///< of each projected row (m)
     std::vector<SolverBody> projectedBodies_;
     std::vector<PseudoVelocity> corrections_;

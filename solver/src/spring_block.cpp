@@ -42,36 +42,36 @@ Vec3 perpendicular(const Vec3& n) {
 
 }  // namespace
 
-bool SpringBlockSolver::samePattern(std::span<const SpringRow> rows) const {
-    if (rows.size() != keyA_.size())
+bool SpringBlockSolver::samePattern() const {
+    if (rowCount() != keyA_.size())
         return false;
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-        if (rows[i].bodyA != keyA_[i] || rows[i].bodyB != keyB_[i])
+    for (std::size_t i = 0; i < rowCount(); ++i) {
+        if (row(i).bodyA != keyA_[i] || row(i).bodyB != keyB_[i])
             return false;
     }
     return true;
 }
 
-void SpringBlockSolver::analyse(std::span<const SpringRow> rows) {
-    const int n = static_cast<int>(rows.size());
+void SpringBlockSolver::analyse() {
+    const int n = static_cast<int>(rowCount());
     keyA_.resize(n);
     keyB_.resize(n);
     std::uint32_t bodyCount = 0;
     for (int i = 0; i < n; ++i) {
-        keyA_[i] = rows[i].bodyA;
-        keyB_[i] = rows[i].bodyB;
-        bodyCount = std::max({bodyCount, rows[i].bodyA + 1, rows[i].bodyB + 1});
+        keyA_[i] = row(i).bodyA;
+        keyB_[i] = row(i).bodyB;
+        bodyCount = std::max({bodyCount, keyA_[i] + 1, keyB_[i] + 1});
     }
 
     // Rows meeting at each movable body (body 0 is the static world: it couples nothing).
     std::vector<std::vector<std::pair<std::uint32_t, bool>>> atBody(bodyCount);
     for (int i = 0; i < n; ++i) {
-        if (rows[i].bodyA == rows[i].bodyB)
+        if (keyA_[i] == keyB_[i])
             continue;
-        if (rows[i].bodyA != 0)
-            atBody[rows[i].bodyA].emplace_back(i, false);
-        if (rows[i].bodyB != 0)
-            atBody[rows[i].bodyB].emplace_back(i, true);
+        if (keyA_[i] != 0)
+            atBody[keyA_[i]].emplace_back(i, false);
+        if (keyB_[i] != 0)
+            atBody[keyB_[i]].emplace_back(i, true);
     }
     std::vector<Eigen::Triplet<double, int>> triplets;
     for (int i = 0; i < n; ++i)
@@ -159,7 +159,6 @@ void SpringBlockSolver::symbolic() {
     lValue_.resize(lStart_[n]);
     reachStart_.assign(n + 1, 0);
     reach_.resize(lStart_[n]);
-    reachSlot_.resize(lStart_[n]);
     pattern_.resize(n);
     std::fill(lCount_.begin(), lCount_.end(), 0);
     for (int k = 0; k < n; ++k) {
@@ -179,8 +178,7 @@ void SpringBlockSolver::symbolic() {
             const int i = pattern_[top];
             const int slot = lStart_[i] + lCount_[i]++;
             lIndex_[slot] = k;
-            reach_[q] = i;
-            reachSlot_[q] = slot;
+            reach_[q] = {i, lStart_[i], slot};
         }
         reachStart_[k + 1] = q;
     }
@@ -189,20 +187,18 @@ void SpringBlockSolver::symbolic() {
     delta_.resize(n);
 }
 
-void SpringBlockSolver::assemble(std::span<const SolverBody> bodies,
-                                 std::span<const SpringRow> rows) {
+void SpringBlockSolver::assemble(std::span<const SolverBody> bodies) {
     std::fill(values_.begin(), values_.end(), Real(0));
-    const int n = static_cast<int>(rows.size());
+    const int n = static_cast<int>(rowCount());
     for (int k = 0; k < n; ++k) {
-        const SpringRow& row = rows[rowAt_[k]];
         // An inactive row is the identity: its update is minus its residual, which is zero.
-        values_[columnStart_[k + 1] - 1] = active_[rowAt_[k]] ? 1 / row.mass : 1;
+        values_[columnStart_[k + 1] - 1] = active_[rowAt_[k]] ? 1 / row(rowAt_[k]).mass : 1;
     }
     for (const Coupling& c : couplings_) {
         if (!active_[c.rowI] || !active_[c.rowJ])
             continue;
-        const SpringRow& p = rows[c.rowI];
-        const SpringRow& q = rows[c.rowJ];
+        const SpringRow& p = row(c.rowI);
+        const SpringRow& q = row(c.rowJ);
         const SolverBody& body = bodies[c.body];
         // (J_p M^-1 J_q') through this body: the rows' linear parts meet its inverse mass, their
         // angular parts its inverse inertia; a row pulls its A end with -J.
@@ -218,28 +214,37 @@ bool SpringBlockSolver::factor() {
     // ldl_numeric: row k of L from a sparse triangular solve over the columns symbolic() found.
     const int n = static_cast<int>(diagonal_.size());
     for (int k = 0; k < n; ++k) {
+        // An inactive row's column holds only its unit diagonal (assemble()): every y of its
+        // solve is +0, so its row of L is +0 and its diagonal 1 -- what the solve below would
+        // compute, without scattering or reading.
+        if (!active_[rowAt_[k]]) {
+            for (int q = reachStart_[k]; q < reachStart_[k + 1]; ++q)
+                lValue_[reach_[q].slot] = 0;
+            work_[k] = 0;  // may hold the last solve's result: later rows read it as +0
+            diagonal_[k] = 1;
+            continue;
+        }
         work_[k] = 0;
         for (int p = columnStart_[k]; p < columnStart_[k + 1]; ++p)
             work_[rowIndex_[p]] += values_[p];
         Real d = work_[k];
         work_[k] = 0;
         for (int q = reachStart_[k]; q < reachStart_[k + 1]; ++q) {
-            const int i = reach_[q];
-            const Real yi = work_[i];
-            work_[i] = 0;
-            const int end = reachSlot_[q];
+            const Reach& r = reach_[q];
+            const Real yi = work_[r.column];
+            work_[r.column] = 0;
             // A slack thread's row couples nothing: its y is +0 (work_ never holds -0: it sums
             // from +0 and subtracts, and x - x is +0), and so is its L entry; subtracting
             // +0 * l changes no value, so skipping it keeps the bits.
             if (yi == 0) {
-                lValue_[end] = 0;
+                lValue_[r.slot] = 0;
                 continue;
             }
-            for (int p = lStart_[i]; p < end; ++p)
+            for (int p = r.first; p < r.slot; ++p)
                 work_[lIndex_[p]] -= lValue_[p] * yi;
-            const Real lki = yi / diagonal_[i];
+            const Real lki = yi / diagonal_[r.column];
             d -= lki * yi;
-            lValue_[end] = lki;
+            lValue_[r.slot] = lki;
         }
         diagonal_[k] = d;
         // K is positive definite (every active row has a positive softness or a movable body);
@@ -253,7 +258,7 @@ bool SpringBlockSolver::factor() {
 void SpringBlockSolver::addTransverseRows(std::span<const SolverBody> bodies) {
     const Real h = h_;
     for (std::size_t i = 0; i < elementCount_; ++i) {
-        const SpringRow row = rows_[i];  // a copy: the pushes below may move rows_
+        const SpringRow& row = elements_[i];
         // Pushing elements would make K indefinite.
         if (!row.geometricStiffness || !usable(row) || !(tension_[i] > 0))
             continue;
@@ -274,20 +279,21 @@ void SpringBlockSolver::addTransverseRows(std::span<const SolverBody> bodies) {
             transverse.impulse = 0;
             prepareSpringRow(a, b, transverse, h);
             if (transverse.mass > 0) {
-                rows_.push_back(transverse);
+                transverse_.push_back(transverse);
                 owner_.push_back(static_cast<std::uint32_t>(i));
             }
         }
     }
 }
 
-void SpringBlockSolver::prepare(std::span<const SolverBody> bodies, std::span<const SpringRow> rows,
+void SpringBlockSolver::prepare(std::span<const SolverBody> bodies, std::span<SpringRow> rows,
                                 Real h) {
     factored_ = false;
     settled_ = false;
     h_ = h;
+    elements_ = rows;
     elementCount_ = rows.size();
-    rows_.assign(rows.begin(), rows.end());
+    transverse_.clear();
     owner_.clear();
     if (rows.empty())
         return;
@@ -305,31 +311,30 @@ void SpringBlockSolver::prepare(std::span<const SolverBody> bodies, std::span<co
 }
 
 void SpringBlockSolver::start(std::span<const SolverBody> bodies) {
-    if (!samePattern(rows_))
-        analyse(rows_);
-    active_.resize(rows_.size());
-    wanted_.resize(rows_.size());
+    if (!samePattern())
+        analyse();
+    const std::size_t n = rowCount();
+    active_.resize(n);
+    wanted_.resize(n);
     // A thread starts active when it is stretched at the step's start; the first solve corrects
     // the guess. Transverse rows follow their element.
-    for (std::size_t i = 0; i < rows_.size(); ++i) {
-        const SpringRow& row = rows_[i];
-        active_[i] = i < elementCount_
-                         ? usable(row) && (!row.tensionOnly || row.length >= row.restLength)
-                         : active_[owner_[i - elementCount_]];
+    for (std::size_t i = 0; i < elementCount_; ++i) {
+        const SpringRow& row = elements_[i];
+        active_[i] = usable(row) && (!row.tensionOnly || row.length >= row.restLength);
     }
-    assemble(bodies, rows_);
+    for (std::size_t i = elementCount_; i < n; ++i)
+        active_[i] = active_[owner_[i - elementCount_]];
+    assemble(bodies);
     factored_ = factor();
 }
 
-void SpringBlockSolver::computeUpdate(std::span<const SolverBody> bodies,
-                                      std::span<const SpringRow> rows) {
-    const int n = static_cast<int>(rows.size());
+void SpringBlockSolver::computeUpdate(std::span<const SolverBody> bodies) {
+    const int n = static_cast<int>(rowCount());
     for (int i = 0; i < n; ++i) {
-        const SpringRow& row = rows[i];
-        work_[position_[i]] = active_[i]
-                                  ? -(springRowSpeed(bodies[row.bodyA], bodies[row.bodyB], row) +
-                                      row.bias + row.softness * row.impulse)
-                                  : 0;
+        const SpringRow& r = row(i);
+        work_[position_[i]] = active_[i] ? -(springRowSpeed(bodies[r.bodyA], bodies[r.bodyB], r) +
+                                             r.bias + r.softness * r.impulse)
+                                         : 0;
     }
     // An inactive row's row and column of L are +0 (factor()), so its value stays +0 and its
     // column subtracts only +0 * +0: skipping it keeps every bit (x - +0 is x, -0 included).
@@ -351,36 +356,38 @@ void SpringBlockSolver::computeUpdate(std::span<const SolverBody> bodies,
         delta_[i] = active_[i] ? work_[position_[i]] : 0;
 }
 
-Real SpringBlockSolver::apply(std::span<SolverBody> bodies, std::span<SpringRow> rows, bool clamp) {
+Real SpringBlockSolver::apply(std::span<SolverBody> bodies, bool clamp) {
     Real largestChange = 0;
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-        SpringRow& row = rows[i];
+    for (std::size_t i = 0; i < rowCount(); ++i) {
         if (!active_[i])
             continue;
-        Real next = row.impulse + delta_[i];
-        if (clamp && row.tensionOnly)
+        SpringRow& r = row(i);
+        Real next = r.impulse + delta_[i];
+        if (clamp && r.tensionOnly)
             next = std::min<Real>(next, 0);
-        const Real change = next - row.impulse;
-        applySpringImpulse(bodies[row.bodyA], bodies[row.bodyB], row, change);
-        row.impulse = next;
-        largestChange = std::max(largestChange, std::abs(change) / row.mass);
+        const Real change = next - r.impulse;
+        applySpringImpulse(bodies[r.bodyA], bodies[r.bodyB], r, change);
+        r.impulse = next;
+        largestChange = std::max(largestChange, std::abs(change) / r.mass);
     }
     return largestChange;
 }
 
-Real SpringBlockSolver::relaxSlackRows(std::span<SolverBody> bodies, std::span<SpringRow> rows) {
+Real SpringBlockSolver::relaxSlackRows(std::span<SolverBody> bodies) {
     Real largestChange = 0;
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-        SpringRow& row = rows[i];
-        if (active_[i] || !row.tensionOnly || !usable(row))
+    for (std::size_t i = 0; i < rowCount(); ++i) {
+        if (active_[i])
             continue;
-        SolverBody& a = bodies[row.bodyA];
-        SolverBody& b = bodies[row.bodyB];
-        const Real residual = springRowSpeed(a, b, row) + row.bias + row.softness * row.impulse;
-        const Real next = std::min<Real>(0, row.impulse - row.mass * residual);
-        applySpringImpulse(a, b, row, next - row.impulse);
-        largestChange = std::max(largestChange, std::abs(next - row.impulse) / row.mass);
-        row.impulse = next;
+        SpringRow& r = row(i);
+        if (!r.tensionOnly || !usable(r))
+            continue;
+        SolverBody& a = bodies[r.bodyA];
+        SolverBody& b = bodies[r.bodyB];
+        const Real residual = springRowSpeed(a, b, r) + r.bias + r.softness * r.impulse;
+        const Real next = std::min<Real>(0, r.impulse - r.mass * residual);
+        applySpringImpulse(a, b, r, next - r.impulse);
+        largestChange = std::max(largestChange, std::abs(next - r.impulse) / r.mass);
+        r.impulse = next;
     }
     return largestChange;
 }
@@ -388,22 +395,12 @@ Real SpringBlockSolver::relaxSlackRows(std::span<SolverBody> bodies, std::span<S
 Real SpringBlockSolver::solve(std::span<SolverBody> bodies, std::span<SpringRow> rows) {
     if (!factored_)
         return 0;
-    // The caller may move the targets between solves (the joints' block: updateJointBlockTargets).
-    for (std::size_t i = 0; i < elementCount_; ++i) {
-        rows_[i].impulse = rows[i].impulse;
-        rows_[i].bias = rows[i].bias;
-    }
-    const Real change = solveRows(bodies);
-    for (std::size_t i = 0; i < elementCount_; ++i)
-        rows[i].impulse = rows_[i].impulse;
-    return change;
-}
-
-Real SpringBlockSolver::solveRows(std::span<SolverBody> bodies) {
-    const std::span<SpringRow> rows(rows_);
+    // The rows are solved where they lie: the caller's targets and impulses between solves
+    // (the joints' block: updateJointBlockTargets) are read as they are.
+    elements_ = rows;
     if (settled_) {
-        computeUpdate(bodies, rows);
-        return std::max(apply(bodies, rows, false), relaxSlackRows(bodies, rows));
+        computeUpdate(bodies);
+        return std::max(apply(bodies, false), relaxSlackRows(bodies));
     }
     const Real change = settle(bodies);
     if (!factored_ || !refreshTransverseRows(bodies))
@@ -416,7 +413,7 @@ bool SpringBlockSolver::refreshTransverseRows(std::span<SolverBody> bodies) {
         return false;
     bool stale = false;
     for (std::size_t i = 0; i < elementCount_ && !stale; ++i) {
-        const SpringRow& row = rows_[i];
+        const SpringRow& row = elements_[i];
         if (!row.geometricStiffness || !usable(row))
             continue;
         // (omega_t h)^2 per newton of tension; the rows hold what they were built with, if any.
@@ -429,15 +426,15 @@ bool SpringBlockSolver::refreshTransverseRows(std::span<SolverBody> bodies) {
     if (!stale)
         return false;
     // Undo the solve, then build the transverse rows again from its tensions.
-    for (std::size_t i = 0; i < rows_.size(); ++i) {
-        SpringRow& row = rows_[i];
+    for (std::size_t i = 0; i < rowCount(); ++i) {
+        SpringRow& r = row(i);
         const Real target = i < elementCount_ ? warm_[i] : 0;
-        applySpringImpulse(bodies[row.bodyA], bodies[row.bodyB], row, target - row.impulse);
+        applySpringImpulse(bodies[r.bodyA], bodies[r.bodyB], r, target - r.impulse);
         if (i < elementCount_)
-            tension_[i] = std::max<Real>(0, -(row.impulse + row.knownImpulse) / h_);
-        row.impulse = target;
+            tension_[i] = std::max<Real>(0, -(r.impulse + r.knownImpulse) / h_);
+        r.impulse = target;
     }
-    rows_.resize(elementCount_);
+    transverse_.clear();
     owner_.clear();
     addTransverseRows(bodies);
     start(bodies);
@@ -445,52 +442,52 @@ bool SpringBlockSolver::refreshTransverseRows(std::span<SolverBody> bodies) {
 }
 
 Real SpringBlockSolver::settle(std::span<SolverBody> bodies) {
-    const std::span<SpringRow> rows(rows_);
+    const std::size_t n = rowCount();
     settled_ = true;
     // Rows left out keep no warm-start impulse.
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-        if (!active_[i] && rows[i].impulse != 0) {
-            applySpringImpulse(bodies[rows[i].bodyA], bodies[rows[i].bodyB], rows[i],
-                               -rows[i].impulse);
-            rows[i].impulse = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        SpringRow& r = row(i);
+        if (!active_[i] && r.impulse != 0) {
+            applySpringImpulse(bodies[r.bodyA], bodies[r.bodyB], r, -r.impulse);
+            r.impulse = 0;
         }
     }
     for (int round = 0;; ++round) {
-        computeUpdate(bodies, rows);
+        computeUpdate(bodies);
         const bool last = round + 1 == kActiveSetRounds;
-        const Real change = apply(bodies, rows, last);
+        const Real change = apply(bodies, last);
         if (last)
             return change;
         // A thread that pushes goes slack; a slack one that would stretch takes load.
         bool changed = false;
-        for (std::size_t i = 0; i < rows.size(); ++i) {
-            const SpringRow& row = rows[i];
+        for (std::size_t i = 0; i < n; ++i) {
+            const SpringRow& r = row(i);
             wanted_[i] = active_[i];
-            if (!row.tensionOnly || !usable(row))
+            if (!r.tensionOnly || !usable(r))
                 continue;
-            const SolverBody& a = bodies[row.bodyA];
-            const SolverBody& b = bodies[row.bodyB];
+            const SolverBody& a = bodies[r.bodyA];
+            const SolverBody& b = bodies[r.bodyB];
             // Pushes and pulls below kFlipSpeed are rounding (a net falling flat has threads at
             // exactly their rest length): flipping on them cost a refactorisation per round.
-            wanted_[i] = active_[i] ? row.impulse / row.mass <= kFlipSpeed
-                                    : springRowSpeed(a, b, row) + row.bias > kFlipSpeed;
+            wanted_[i] = active_[i] ? r.impulse / r.mass <= kFlipSpeed
+                                    : springRowSpeed(a, b, r) + r.bias > kFlipSpeed;
             changed = changed || wanted_[i] != active_[i];
         }
-        for (std::size_t i = elementCount_; i < rows.size(); ++i)
+        for (std::size_t i = elementCount_; i < n; ++i)
             wanted_[i] = wanted_[owner_[i - elementCount_]];
         if (!changed)
             return change;
         // Undo the round, release the rows that leave, and solve again with the new set.
-        for (std::size_t i = 0; i < rows.size(); ++i) {
-            SpringRow& row = rows[i];
+        for (std::size_t i = 0; i < n; ++i) {
             if (!active_[i])
                 continue;
-            const Real keep = wanted_[i] ? row.impulse - delta_[i] : 0;
-            applySpringImpulse(bodies[row.bodyA], bodies[row.bodyB], row, keep - row.impulse);
-            row.impulse = keep;
+            SpringRow& r = row(i);
+            const Real keep = wanted_[i] ? r.impulse - delta_[i] : 0;
+            applySpringImpulse(bodies[r.bodyA], bodies[r.bodyB], r, keep - r.impulse);
+            r.impulse = keep;
         }
         std::swap(active_, wanted_);
-        assemble(bodies, rows);
+        assemble(bodies);
         if (!factor()) {
             factored_ = false;
             return change;

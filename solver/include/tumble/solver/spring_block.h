@@ -55,17 +55,18 @@ class SpringBlockSolver {
 public:
     /// Analyses the rows' pattern if it changed, assembles and factors K with every usable row
     /// active. Call after prepareSpringRows(). h > 0 (the step) adds the taut elements'
-    /// transverse rows (see above); 0 leaves them out (rigid rows, projections).
-    void prepare(std::span<const SolverBody> bodies, std::span<const SpringRow> rows, Real h = 0);
+    /// transverse rows (see above); 0 leaves them out (rigid rows, projections). The rows are
+    /// not copied: solve() works on them in place.
+    void prepare(std::span<const SolverBody> bodies, std::span<SpringRow> rows, Real h = 0);
 
     /// One exact update of every active row given the bodies' current velocities (contacts
     /// included); the first call after prepare() also settles which tension-only rows are
-    /// active. `rows` are prepare()'s. Returns the largest change of a row's J v (m/s), for
-    /// the solver's tolerance.
+    /// active. `rows` are prepare()'s, unmoved (their impulses and biases may have changed).
+    /// Returns the largest change of a row's J v (m/s), for the solver's tolerance.
     Real solve(std::span<SolverBody> bodies, std::span<SpringRow> rows);
 
     /// Transverse rows added by the last prepare(), for the benchmarks.
-    std::size_t transverseRows() const { return rows_.size() - elementCount_; }
+    std::size_t transverseRows() const { return transverse_.size(); }
 
     /// Whether the last prepare() factored K (false without rows, or on a numerically singular
     /// K); the caller then solves the rows by Gauss-Seidel instead.
@@ -75,6 +76,11 @@ public:
     std::size_t factorSize() const { return lIndex_.size(); }
 
 private:
+    struct Reach {   // one column of row k's sparse triangular solve (factor())
+        int column;  // i: the column of L the solve visits
+        int first;   // its first slot in lIndex_ / lValue_
+        int slot;    // where L(k, i) goes; the slots before it are the rows above k
+    };
     struct Coupling {         // one body's share of an off-diagonal entry of K
         std::uint32_t entry;  // into values_
         std::uint32_t rowI;
@@ -87,27 +93,35 @@ private:
     void addTransverseRows(std::span<const SolverBody> bodies);
     /// Sets which rows start active, assembles and factors K.
     void start(std::span<const SolverBody> bodies);
-    Real solveRows(std::span<SolverBody> bodies);
     /// The first solve of a step: settles the tension-only active set.
     Real settle(std::span<SolverBody> bodies);
     /// Whether the settled solve's tensions leave a taut element's transverse rows far from
     /// the tension they were built with; if so, undoes the solve and rebuilds them with it.
     bool refreshTransverseRows(std::span<SolverBody> bodies);
-    bool samePattern(std::span<const SpringRow> rows) const;
-    void analyse(std::span<const SpringRow> rows);
+    bool samePattern() const;
+    void analyse();
     /// The elimination tree, L's pattern and each row's solve order (factor()'s walk, once).
     void symbolic();
-    void assemble(std::span<const SolverBody> bodies, std::span<const SpringRow> rows);
+    void assemble(std::span<const SolverBody> bodies);
     bool factor();
     /// delta = -K^-1 residual over the active rows (in original row order).
-    void computeUpdate(std::span<const SolverBody> bodies, std::span<const SpringRow> rows);
-    Real apply(std::span<SolverBody> bodies, std::span<SpringRow> rows, bool clamp);
+    void computeUpdate(std::span<const SolverBody> bodies);
+    Real apply(std::span<SolverBody> bodies, bool clamp);
     /// Threads the active set left slack, by Gauss-Seidel: contacts solved after the set was
     /// chosen may stretch them, and nothing else would stop it.
-    Real relaxSlackRows(std::span<SolverBody> bodies, std::span<SpringRow> rows);
+    Real relaxSlackRows(std::span<SolverBody> bodies);
 
-    // The elements' rows, then their transverse rows (owner_: the element of each).
-    std::vector<SpringRow> rows_;
+    /// Row i of the block: the elements' rows (the caller's), then their transverse rows.
+    SpringRow& row(std::size_t i) {
+        return i < elementCount_ ? elements_[i] : transverse_[i - elementCount_];
+    }
+    const SpringRow& row(std::size_t i) const {
+        return i < elementCount_ ? elements_[i] : transverse_[i - elementCount_];
+    }
+    std::size_t rowCount() const { return elementCount_ + transverse_.size(); }
+
+    std::span<SpringRow> elements_;      ///< prepare()'s rows, solved in place
+    std::vector<SpringRow> transverse_;  ///< owner_: the element of each
     std::vector<std::uint32_t> owner_;
     std::size_t elementCount_ = 0;
     Real h_ = 0;                 ///< prepare()'s step; 0: no transverse rows
@@ -133,10 +147,9 @@ private:
     std::vector<Real> diagonal_;
     std::vector<int> flag_;
     std::vector<int> pattern_;
-    // Row k of L: the columns reach_[reachStart_[k] ...] in solve order, each with its slot.
+    // Row k of L: the columns reach_[reachStart_[k] ...] in solve order.
     std::vector<int> reachStart_;
-    std::vector<int> reach_;
-    std::vector<int> reachSlot_;
+    std::vector<Reach> reach_;
     std::vector<Real> work_;
     std::vector<Real> delta_;
     std::vector<char> active_;
