@@ -145,6 +145,7 @@ private:
     std::vector<int> lIndex_;
     std::vector<Real> lValue_;
     std::vector<Real> diagonal_;
+    std::vector<char> zeroRow_;  ///< row k of L holds only +0 (an inactive row's, factor())
     std::vector<int> flag_;
     std::vector<int> pattern_;
     // Row k of L: the columns reach_[reachStart_[k] ...] in solve order.
