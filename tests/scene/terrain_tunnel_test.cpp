@@ -13,7 +13,7 @@
 // the terrain a sphere reached 0.046 m (vs 0.010 flat) and a hull 0.096 m (vs 0.029): a sphere over
 // an internal edge between two triangles 2.9 degrees apart got no contact point for a 1 cm band of
 // heights (TerrainTunnel.SphereOverInternalEdgeKeepsItsContact) and fell 3 steps into the terrain.
-// With that fixed (collide_mesh.cpp, offerGap and onFaceNormal), the lowest points of boxes,
+// With that fixed (collide_mesh_edges.cpp, offerGap and onFaceNormal), the lowest points of boxes,
 // spheres, capsules and cylinders on the terrain lie within kLikeFlat (1 cm, set before
 // measuring) of the same pile's on a half-space: measured 0.015, 0.006, 0.009 and 0.014 m on the
 // terrain, 0.032, 0.010, 0.017 and 0.023 m on the half-space. Hulls are not asserted: 0.048 m vs
@@ -211,7 +211,7 @@ TEST(TerrainTunnel, ThousandBodyPileNeverSinksBelowTheHeightField) {
 // height field has no point while the sphere is 4-5 cm into it. Its centre lies over the
 // internal edge between two triangles (normals (0.437, 0.275, 0.856) and (0.481, 0.268, 0.835));
 // the contact redone along either face normal fell over the other triangle and was dropped by
-// both (collide_mesh.cpp's internal-edge rule); now the pair routine's contact on the edge is
+// both (collide_mesh_edges.cpp); now the pair routine's contact on the edge is
 // kept with the face normal when no triangle keeps a point (onFaceNormal).
 TEST(TerrainTunnel, SphereOverInternalEdgeKeepsItsContact) {
     const HeightFieldData field = rollingTerrain();

@@ -6,9 +6,10 @@
 /// Active edges (against "ghost" contacts): an edge between two triangles that lie in one plane
 /// (within kFlatEdgeAngle) or fold concavely is internal: a contact on it, or on a vertex all of
 /// whose edges in the triangle are internal, takes the triangle's face normal instead of the
-/// edge's (collide_mesh.cpp). Boundary edges, edges of more than two triangles and edges between
-/// triangles of opposite winding stay active. The fold is judged from the side the normals point
-/// to; seen from behind, a convex edge looks concave and is still flagged as seen from the front.
+/// edge's (collide_mesh_edges.cpp). Boundary edges, edges of more than two triangles and edges
+/// between triangles of opposite winding stay active. The fold is judged from the side the normals
+/// point to; seen from behind, a convex edge looks concave and is still flagged as seen from the
+/// front.
 
 #include <array>
 #include <cstdint>
