@@ -256,11 +256,12 @@ void collideConvexMesh(const Shape& a, const Transform& poseA, const Shape& b,
     const Real backReach = kBackReach * boundingRadius(a);
     Scratch& s = scratch();
     s.kept.clear();
-    forEachTriangle(b, box, [&](const MeshTriangle& t) {
+    forEachTriangle(b, box, [&](const MeshTriangle& t) { s.kept.triangles.push_back(t); });
+    for (const MeshTriangle& t : s.kept.triangles) {
         TriangleManifold tm{{}, t.index};
         collideConvex(a, pose, s.prism.shape(t), Transform{}, margin, tm.manifold);
-        fileTriangleContact(a, pose, t, margin, backReach, tm, s.kept);
-    });
+        fileTriangleContact(a, pose, b, t, margin, backReach, tm, s.kept);
+    }
     finishEdgeContacts(roundingRadius(a), s.kept);
     std::array<Vec3, ManifoldSet::kMaxManifolds> normals;
     out.count = groupManifolds(s.kept.manifolds, normals);

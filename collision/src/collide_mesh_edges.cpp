@@ -17,10 +17,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <vector>
 
 #include "collide_mesh_edges.h"
 #include "gjk.h"
+#include "mesh_triangles.h"
 #include "pair_routines.h"
 
 namespace tumble::detail {
@@ -28,6 +31,9 @@ namespace {
 
 /// Vertices within this (m) of the farthest one along a direction belong to the same feature.
 constexpr Real kFeatureTolerance = 1e-9;
+/// A contact normal may point above a neighbouring vertex by this (dimensionless: of the
+/// vertex's distance) and still count as within a feature's normal cone (withinCone).
+constexpr Real kConeTolerance = 1e-12;
 /// cos(kFlatEdgeAngle): an internal edge's contact normal within this of the face normal may lie
 /// between the face normals of a convex fold (onFaceNormal).
 constexpr Real kWedgeCos = 0.99862953475457383;
@@ -67,6 +73,43 @@ std::uint8_t featureEdges(const MeshTriangle& t, const Vec3& toward) {
         default:
             return 0;
     }
+}
+
+/// Whether `d` (unit, from the surface toward the shape in front of it) lies in the normal cone of
+/// t's feature whose edges are `edges` (featureEdges; not the face): the plane through the
+/// feature with normal d has no neighbouring vertex above it (by more than kConeTolerance of its
+/// distance). Of an edge: t's third vertex and the one across the edge (acrossVertex), measured
+/// across the edge (the wedge between the two face normals). Of a vertex: every vertex of the
+/// `triangles` that share it; all of them are under the shape's box, as the vertex is (the
+/// triangle's point nearest to or deepest in the shape). A thin prism's least way out of a shape
+/// deep below an edge is often its side face, far outside the cone: such a normal pushes the
+/// shape along the surface or into it.
+bool withinCone(const Shape& surface, const std::vector<MeshTriangle>& triangles,
+                const MeshTriangle& t, std::uint8_t edges, const Vec3& d) {
+    const auto below = [&](const Vec3& offset) {
+        return d.dot(offset) <= kConeTolerance * offset.norm();
+    };
+    for (std::size_t k = 0; k < 3; ++k) {
+        const Vec3& a = t.vertices[k];
+        if (edges == (1u << k)) {  // the edge from a: offsets across it
+            const Vec3 e = (t.vertices[(k + 1) % 3] - a).normalized();
+            const auto acrossEdge = [&](const Vec3& p) { return Vec3(p - a - (p - a).dot(e) * e); };
+            Vec3 across;
+            return below(acrossEdge(t.vertices[(k + 2) % 3])) &&
+                   !(acrossVertex(surface, t, static_cast<int>(k), across) &&
+                     !below(acrossEdge(across)));
+        }
+        if (edges != ((1u << k) | (1u << ((k + 2) % 3))))
+            continue;
+        for (const MeshTriangle& other : triangles) {  // vertex a: edges k and k - 1
+            if (std::find(other.vertices.begin(), other.vertices.end(), a) == other.vertices.end())
+                continue;
+            for (const Vec3& p : other.vertices)
+                if (!below(p - a))
+                    return false;
+        }
+    }
+    return true;
 }
 
 /// Whether p (on or near the triangle's plane) projects into the triangle.
@@ -281,14 +324,23 @@ void addGaps(const std::vector<GapPoint>& gaps, const std::vector<MeshTriangle>&
 
 }  // namespace
 
-void fileTriangleContact(const Shape& shape, const Transform& pose, const MeshTriangle& t,
-                         Real margin, Real backReach, TriangleManifold tm, EdgeContacts& out) {
-    out.triangles.push_back(t);
+void fileTriangleContact(const Shape& shape, const Transform& pose, const Shape& surface,
+                         const MeshTriangle& t, Real margin, Real backReach, TriangleManifold tm,
+                         EdgeContacts& out) {
     const Vec3 normal = intoTriangle(pose, t, backReach);
     if (tm.manifold.pointCount > 0) {
         const std::uint8_t edges = featureEdges(t, -tm.manifold.normal);
-        if (edges != 0 && (edges & t.activeEdges) != 0) {
-            out.manifolds.push_back(tm);  // an active edge or vertex: its own normal
+        // An active edge or vertex keeps its own normal if it lies in the feature's normal cone;
+        // else the contact is redone along the face normal, as on an internal edge (the
+        // neighbour's own contact holds what lies over it). Seen from behind, a convex edge is
+        // concave: its normal is kept as it is. So is a rounded shape's: the direction from the
+        // feature to its core may leave a neighbour above the plane (a saddle vertex) and still
+        // be the one way out for a sphere of that radius (redone, the terrain pile's capsules went
+        // 3.3 cm deep instead of 0.8).
+        if (edges != 0 && (edges & t.activeEdges) != 0 &&
+            (normal.dot(t.normal) > 0 || roundingRadius(shape) > 0 ||
+             withinCone(surface, out.triangles, t, edges, -tm.manifold.normal))) {
+            out.manifolds.push_back(tm);
             return;
         }
         // On the face from the shape's side: clipped points reach the triangle's edges.

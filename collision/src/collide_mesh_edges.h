@@ -40,7 +40,7 @@ struct EdgeContacts {
     std::vector<TriangleManifold> manifolds;  ///< kept, each with its normal
     std::vector<TriangleManifold> unclaimed;  ///< the fallback when nothing else is kept
     std::vector<GapPoint> gaps;
-    std::vector<MeshTriangle> triangles;  ///< all under the shape's box
+    std::vector<MeshTriangle> triangles;  ///< all under the shape's box, in walk order
 
     void clear() {
         manifolds.clear();
@@ -50,12 +50,14 @@ struct EdgeContacts {
     }
 };
 
-/// Files triangle t's contact `tm` (the pair routine's, shape against the triangle's prism; the
-/// shape at `pose` in the surface's frame) under the internal-edge rules: kept with its own
-/// normal on an active edge or vertex, else redone along the face normal. `backReach` (m) is
+/// Files triangle t of `surface` (one of out.triangles, filled first) and its contact `tm` (the
+/// pair routine's, shape against the triangle's prism; the shape at `pose` in the surface's frame)
+/// under the internal-edge rules: kept with its own normal on an active edge or vertex when the
+/// normal lies in that feature's normal cone, else redone along the face normal. `backReach` (m) is
 /// how far the shape's origin may lie behind the plane and still be pushed out of the front.
-void fileTriangleContact(const Shape& shape, const Transform& pose, const MeshTriangle& t,
-                         Real margin, Real backReach, TriangleManifold tm, EdgeContacts& out);
+void fileTriangleContact(const Shape& shape, const Transform& pose, const Shape& surface,
+                         const MeshTriangle& t, Real margin, Real backReach, TriangleManifold tm,
+                         EdgeContacts& out);
 
 /// After every triangle is filed: adds the gap points no triangle holds, and falls back on the
 /// unclaimed contacts when nothing else was kept. `rounding` is the shape's (m).
