@@ -86,6 +86,46 @@ Real depthAlong(const Shape& shape, const Transform& pose, const Vec3& up,
     return t;
 }
 
+/// A random shape of `kind` whose deepest point along a direction up to `maxTilt` (rad) off the
+/// face normal of a random edge (an active one if `active`) lies 0-5 cm below a point of it.
+struct EdgePose {
+    MeshTriangle triangle;
+    int edge;
+    Shape shape;
+    Transform pose;
+};
+
+EdgePose poseOverEdge(const Shape& surface, std::mt19937& rng, int kind, Real maxTilt,
+                      bool active) {
+    std::uniform_real_distribution<Real> u(0, 1);
+    auto [t, edge] = randomEdge(surface, rng);
+    while (active && ((t.activeEdges >> edge) & 1u) == 0)
+        std::tie(t, edge) = randomEdge(surface, rng);
+    const Vec3 a = t.vertices[static_cast<std::size_t>(edge)];
+    const Vec3 b = t.vertices[static_cast<std::size_t>((edge + 1) % 3)];
+    const Vec3 point = a + (0.05 + 0.9 * u(rng)) * (b - a);
+    const Real tilt = (2 * u(rng) - 1) * maxTilt;
+    const Vec3 along = Eigen::AngleAxis<Real>(tilt, (b - a).normalized()) * t.normal;
+    EdgePose p{t, edge, testing::randomConvex(rng, kind),
+               Transform{Vec3::Zero(), testing::randomRotation(rng)}};
+    const Real depth = 0.05 * u(rng);
+    p.pose.position = point - depth * along -
+                      p.pose.rotation * support(p.shape, p.pose.rotation.conjugate() * -along);
+    return p;
+}
+
+/// The triangles under `box`, and each as the column 1 m deep below it (see depthAlong).
+void trianglesUnder(const Shape& surface, const Aabb& box, std::vector<MeshTriangle>& triangles,
+                    std::vector<Shape>& columns) {
+    detail::forEachTriangle(surface, box, [&](const MeshTriangle& c) {
+        std::vector<Vec3> corners(c.vertices.begin(), c.vertices.end());
+        for (const Vec3& v : c.vertices)
+            corners.push_back(v - Vec3::UnitZ());
+        columns.push_back(ConvexHull::fromPoints(corners));
+        triangles.push_back(c);
+    });
+}
+
 struct EdgeFigures {
     int poses = 0, touching = 0, exact = 0;
     Real worstDepth = 0, worstRelative = 0, worstNormal = 0;
@@ -93,32 +133,16 @@ struct EdgeFigures {
 
 /// One random pose over an internal edge of `surface` (see the file comment), checked.
 void checkPose(const Shape& surface, std::mt19937& rng, int kind, EdgeFigures& f) {
-    std::uniform_real_distribution<Real> u(0, 1);
-    const auto [t, edge] = randomEdge(surface, rng);
-    ASSERT_EQ(t.activeEdges, 0) << "the surface's folds are within kFlatEdgeAngle";
-    const Vec3 a = t.vertices[static_cast<std::size_t>(edge)];
-    const Vec3 b = t.vertices[static_cast<std::size_t>((edge + 1) % 3)];
-    const Vec3 point = a + (0.05 + 0.9 * u(rng)) * (b - a);
-    const Real tilt = (2 * u(rng) - 1) * kFlatEdgeAngle;
-    const Vec3 along = Eigen::AngleAxis<Real>(tilt, (b - a).normalized()) * t.normal;
-    const Shape shape = testing::randomConvex(rng, kind == 3 ? 4 : kind);  // not cylinders
-    Transform pose{Vec3::Zero(), testing::randomRotation(rng)};
-    // The shape's deepest point along -along lies `depth` below the edge point.
-    const Real depth = 0.05 * u(rng);
-    pose.position =
-        point - depth * along - pose.rotation * support(shape, pose.rotation.conjugate() * -along);
+    const EdgePose p = poseOverEdge(surface, rng, kind == 3 ? 4 : kind, kFlatEdgeAngle, false);
+    ASSERT_EQ(p.triangle.activeEdges, 0) << "the surface's folds are within kFlatEdgeAngle";
+    const Shape& shape = p.shape;
+    const Transform& pose = p.pose;
+    const MeshTriangle& t = p.triangle;
     Manifold m;
     collide(shape, pose, surface, Transform{}, 0.02, m);
     std::vector<Shape> columns;
-    std::vector<Vec3> normals;
-    detail::forEachTriangle(surface, boundsOf(shape, pose).fattened(0.35),
-                            [&](const MeshTriangle& c) {
-                                std::vector<Vec3> corners(c.vertices.begin(), c.vertices.end());
-                                for (const Vec3& v : c.vertices)
-                                    corners.push_back(v - Vec3::UnitZ());
-                                columns.push_back(ConvexHull::fromPoints(corners));
-                                normals.push_back(c.normal);
-                            });
+    std::vector<MeshTriangle> near;
+    trianglesUnder(surface, boundsOf(shape, pose).fattened(0.35), near, columns);
     ++f.poses;
     const Vec3 up = m.pointCount > 0 ? Vec3(-m.normal) : t.normal;
     const Real reference = depthAlong(shape, pose, up, columns);
@@ -138,8 +162,8 @@ void checkPose(const Shape& surface, std::mt19937& rng, int kind, EdgeFigures& f
     f.worstDepth = std::max(f.worstDepth, error);
     f.worstRelative = std::max(f.worstRelative, error / reference);
     Real nearest = INFINITY;
-    for (const Vec3& normal : normals)
-        nearest = std::min(nearest, (normal - up).norm());
+    for (const MeshTriangle& c : near)
+        nearest = std::min(nearest, (c.normal - up).norm());
     f.worstNormal = std::max(f.worstNormal, nearest);
 }
 
@@ -233,38 +257,21 @@ struct ActiveFigures {
 
 /// One random pose over an active edge of `surface`, checked (see above).
 void checkActivePose(const Shape& surface, std::mt19937& rng, int kind, ActiveFigures& f) {
-    std::uniform_real_distribution<Real> u(0, 1);
-    auto [t, edge] = randomEdge(surface, rng);
-    while (((t.activeEdges >> edge) & 1u) == 0)
-        std::tie(t, edge) = randomEdge(surface, rng);
-    const Vec3 a = t.vertices[static_cast<std::size_t>(edge)];
-    const Vec3 b = t.vertices[static_cast<std::size_t>((edge + 1) % 3)];
-    const Vec3 point = a + (0.05 + 0.9 * u(rng)) * (b - a);
-    const Real tilt = (2 * u(rng) - 1) * 0.5;  // up to 29 degrees either way
-    const Vec3 along = Eigen::AngleAxis<Real>(tilt, (b - a).normalized()) * t.normal;
-    const Shape shape = testing::randomConvex(rng, kind);
-    Transform pose{Vec3::Zero(), testing::randomRotation(rng)};
-    const Real depth = 0.05 * u(rng);
-    pose.position =
-        point - depth * along - pose.rotation * support(shape, pose.rotation.conjugate() * -along);
+    const EdgePose p = poseOverEdge(surface, rng, kind, 0.5, true);  // up to 29 degrees
+    const Shape& shape = p.shape;
+    const Transform& pose = p.pose;
     ManifoldSet set;
     collide(shape, pose, surface, Transform{}, 0.02, set);
     const Manifold& m = set.manifolds[0];
     std::vector<Shape> columns;
     std::vector<MeshTriangle> faces, ring;
     const Aabb box = boundsOf(shape, pose);
-    detail::forEachTriangle(surface, box.fattened(0.35), [&](const MeshTriangle& c) {
-        std::vector<Vec3> corners(c.vertices.begin(), c.vertices.end());
-        for (const Vec3& v : c.vertices)
-            corners.push_back(v - Vec3::UnitZ());
-        columns.push_back(ConvexHull::fromPoints(corners));
-        ring.push_back(c);
-    });
+    trianglesUnder(surface, box.fattened(0.35), ring, columns);
     detail::forEachTriangle(surface, box.fattened(0.02),
                             [&](const MeshTriangle& c) { faces.push_back(c); });
     ++f.poses;
     if (m.pointCount == 0) {
-        EXPECT_LE(depthAlong(shape, pose, t.normal, columns), 0)
+        EXPECT_LE(depthAlong(shape, pose, p.triangle.normal, columns), 0)
             << "pose " << f.poses - 1 << " kind " << kind << " has no point";
         return;
     }
