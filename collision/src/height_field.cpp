@@ -1,8 +1,6 @@
 // Building a height field's geometry: checks, the height range and the active-edge flags of every
-// cell's two triangles (see MeshTriangle::index for the split). A cell's edges border, in order,
-// for the lower triangle (00, 10, 11): the cell below (j - 1), the cell to the right (i + 1) and
-// the diagonal; for the upper one (00, 11, 01): the diagonal, the cell above (j + 1) and the cell
-// to the left (i - 1). Edges on the border or next to a hole stay active.
+// cell's two triangles (see MeshTriangle::index for the split, detail::fieldAcross for which
+// neighbour each edge borders). Edges on the border or next to a hole stay active.
 
 #include <algorithm>
 #include <cmath>
@@ -37,38 +35,26 @@ void checkInput(const HeightFieldData& data) {
              " flags; it must be empty or (rows - 1) x ", "(columns - 1) = ", cells);
 }
 
-bool isCell(const HeightFieldData& grid, std::int64_t i, std::int64_t j) {
-    if (i < 0 || j < 0 || i >= grid.columns - 1 || j >= grid.rows - 1)
-        return false;
-    return grid.holes.empty() ||
-           grid.holes[static_cast<std::size_t>(j * (grid.columns - 1) + i)] == 0;
-}
-
-/// Bit 1 << edge when the triangle's edge `edge` is active, its neighbour's third vertex being
-/// sample (ni, nj) of a cell that exists.
-std::uint8_t edgeBit(const HeightFieldData& grid, const MeshTriangle& t, int edge, bool neighbour,
-                     std::uint32_t ni, std::uint32_t nj) {
-    if (!neighbour)
+/// Bit 1 << edge when the triangle's edge `edge` is active (fieldAcross finds its neighbour).
+std::uint8_t edgeBit(const HeightFieldGeometry& field, const MeshTriangle& t, int edge) {
+    Vec3 across;
+    if (!detail::fieldAcross(field, t.index, edge, across))
         return static_cast<std::uint8_t>(1u << edge);
     const auto& v = t.vertices;
-    const bool active = isActiveEdge(
-        v[static_cast<std::size_t>(edge)], v[static_cast<std::size_t>((edge + 1) % 3)],
-        v[static_cast<std::size_t>((edge + 2) % 3)], detail::samplePoint(grid, ni, nj));
+    const bool active =
+        isActiveEdge(v[static_cast<std::size_t>(edge)], v[static_cast<std::size_t>((edge + 1) % 3)],
+                     v[static_cast<std::size_t>((edge + 2) % 3)], across);
     return active ? static_cast<std::uint8_t>(1u << edge) : std::uint8_t{0};
 }
 
 std::uint8_t cellFlags(const HeightFieldGeometry& field, std::uint32_t i, std::uint32_t j) {
-    const HeightFieldData& grid = field.grid;
-    const auto si = static_cast<std::int64_t>(i), sj = static_cast<std::int64_t>(j);
     const MeshTriangle lower = detail::fieldTriangle(field, i, j, 0);
     const MeshTriangle upper = detail::fieldTriangle(field, i, j, 1);
     std::uint8_t low = 0, up = 0;
-    low |= edgeBit(grid, lower, 0, isCell(grid, si, sj - 1), i, j - 1);
-    low |= edgeBit(grid, lower, 1, isCell(grid, si + 1, sj), i + 2, j + 1);
-    low |= edgeBit(grid, lower, 2, true, i, j + 1);
-    up |= edgeBit(grid, upper, 0, true, i + 1, j);
-    up |= edgeBit(grid, upper, 1, isCell(grid, si, sj + 1), i + 1, j + 2);
-    up |= edgeBit(grid, upper, 2, isCell(grid, si - 1, sj), i - 1, j);
+    for (int edge = 0; edge < 3; ++edge) {
+        low |= edgeBit(field, lower, edge);
+        up |= edgeBit(field, upper, edge);
+    }
     return static_cast<std::uint8_t>(low | up << 3);
 }
 

@@ -158,6 +158,7 @@ void flagActiveEdges(MeshGeometry& mesh) {
         return std::tie(p.low, p.high, p.triangle, p.k) < std::tie(q.low, q.high, q.triangle, q.k);
     });
     mesh.activeEdges.assign(mesh.triangles.size(), kAllEdgesActive);
+    mesh.across.assign(mesh.triangles.size(), {kNoNeighbour, kNoNeighbour, kNoNeighbour});
     for (std::size_t s = 0; s < sides.size();) {
         std::size_t end = s + 1;
         while (end < sides.size() && sides[end].low == sides[s].low &&
@@ -169,6 +170,8 @@ void flagActiveEdges(MeshGeometry& mesh) {
                 return mesh.vertices[mesh.triangles[side.triangle][(side.k + offset) % 3]];
             };
             const auto clear = [&](const EdgeSide& side, const EdgeSide& other) {
+                mesh.across[side.triangle][side.k] =
+                    mesh.triangles[other.triangle][(other.k + 2) % 3];
                 if (!isActiveEdge(vertex(side, 0), vertex(side, 1), vertex(side, 2),
                                   vertex(other, 2)))
                     mesh.activeEdges[side.triangle] &= static_cast<std::uint8_t>(~(1u << side.k));

@@ -83,6 +83,48 @@ inline MeshTriangle fieldTriangle(const HeightFieldGeometry& field, std::uint32_
     return t;
 }
 
+/// Whether cell (i, j) exists: inside the grid and not a hole.
+inline bool isCell(const HeightFieldData& grid, std::int64_t i, std::int64_t j) {
+    if (i < 0 || j < 0 || i >= grid.columns - 1 || j >= grid.rows - 1)
+        return false;
+    return grid.holes.empty() ||
+           grid.holes[static_cast<std::size_t>(j * (grid.columns - 1) + i)] == 0;
+}
+
+/// The vertex of the triangle across edge `edge` of the height field's triangle `index` (see
+/// MeshTriangle::index) that is not on the edge; false on the border or next to a hole. Edges of
+/// the lower triangle (00, 10, 11) border, in order, the cell below (j - 1), the cell to the
+/// right (i + 1) and the diagonal; of the upper one (00, 11, 01), the diagonal, the cell above
+/// (j + 1) and the cell to the left (i - 1).
+inline bool fieldAcross(const HeightFieldGeometry& field, std::uint32_t index, int edge,
+                        Vec3& out) {
+    struct Across {
+        int cellI, cellJ, sampleI, sampleJ;  // offsets from cell (i, j)
+    };
+    static constexpr std::array<std::array<Across, 3>, 2> kAcross{
+        {{{{0, -1, 0, -1}, {1, 0, 2, 1}, {0, 0, 0, 1}}},
+         {{{0, 0, 1, 0}, {0, 1, 1, 2}, {-1, 0, -1, 0}}}}};
+    const HeightFieldData& grid = field.grid;
+    const std::uint32_t cell = index / 2;
+    const auto i = static_cast<std::int64_t>(cell % (grid.columns - 1));
+    const auto j = static_cast<std::int64_t>(cell / (grid.columns - 1));
+    const Across& a = kAcross[index % 2][static_cast<std::size_t>(edge)];
+    if (!isCell(grid, i + a.cellI, j + a.cellJ))
+        return false;
+    out = samplePoint(grid, static_cast<std::uint32_t>(i + a.sampleI),
+                      static_cast<std::uint32_t>(j + a.sampleJ));
+    return true;
+}
+
+/// The same for a mesh (MeshGeometry::across).
+inline bool meshAcross(const MeshGeometry& mesh, std::uint32_t index, int edge, Vec3& out) {
+    const std::uint32_t vertex = mesh.across[index][static_cast<std::size_t>(edge)];
+    if (vertex == kNoNeighbour)
+        return false;
+    out = mesh.vertices[vertex];
+    return true;
+}
+
 /// The cells [first, last] along one axis of n samples at `spacing` whose span meets
 /// [low, high]; false when none does.
 inline bool cellRange(Real low, Real high, Real spacing, std::uint32_t samples,
@@ -122,6 +164,13 @@ void forEachTriangle(const HeightFieldGeometry& field, const Aabb& box, Visit&& 
             visit(fieldTriangle(field, i, j, 1));
         }
     }
+}
+
+/// The vertex across edge `edge` of triangle t of either kind of surface (fieldAcross).
+inline bool acrossVertex(const Shape& shape, const MeshTriangle& t, int edge, Vec3& out) {
+    if (const auto* mesh = std::get_if<TriangleMesh>(&shape))
+        return meshAcross(*mesh->data, t.index, edge, out);
+    return fieldAcross(*std::get<HeightField>(shape).data, t.index, edge, out);
 }
 
 /// Either kind of triangle surface: the mesh or height field behind `shape`.

@@ -118,6 +118,7 @@ TEST(CheckpointMesh, SharedGeometryIsSavedOnceAndSharedAfterLoading) {
     EXPECT_EQ(after.triangles, before.triangles);
     EXPECT_EQ(after.sourceIndex, before.sourceIndex);
     EXPECT_EQ(after.activeEdges, before.activeEdges);
+    EXPECT_EQ(after.across, before.across);
     ASSERT_EQ(after.nodes.size(), before.nodes.size());
     for (std::size_t n = 0; n < after.nodes.size(); ++n) {
         EXPECT_EQ(after.nodes[n].index, before.nodes[n].index);

@@ -6,9 +6,10 @@
 /// Active edges (against "ghost" contacts): an edge between two triangles that lie in one plane
 /// (within kFlatEdgeAngle) or fold concavely is internal: a contact on it, or on a vertex all of
 /// whose edges in the triangle are internal, takes the triangle's face normal instead of the
-/// edge's (collide_mesh.cpp). Boundary edges, edges of more than two triangles and edges between
-/// triangles of opposite winding stay active. The fold is judged from the side the normals point
-/// to; seen from behind, a convex edge looks concave and is still flagged as seen from the front.
+/// edge's (collide_mesh_edges.cpp). Boundary edges, edges of more than two triangles and edges
+/// between triangles of opposite winding stay active. The fold is judged from the side the normals
+/// point to; seen from behind, a convex edge looks concave and is still flagged as seen from the
+/// front.
 
 #include <array>
 #include <cstdint>
@@ -34,14 +35,21 @@ struct MeshBvhNode {
 
 /// Bit k of a triangle's edge flags is edge k, from its vertex k to vertex (k + 1) mod 3.
 inline constexpr std::uint8_t kAllEdgesActive = 0b111;
+/// In MeshGeometry::across: the edge has no one neighbour (a border, a non-manifold edge or one
+/// between triangles of opposite winding).
+inline constexpr std::uint32_t kNoNeighbour = 0xFFFFFFFFu;
 
 struct MeshGeometry {
     std::vector<Vec3> vertices;  ///< (m), local frame
     /// Triangles in the order of the hierarchy's leaves; a triangle's index here is its id in
     /// contact feature ids and query results.
     std::vector<std::array<std::uint32_t, 3>> triangles;
-    std::vector<Vec3> normals;               ///< unit, per triangle, counter-clockwise side
-    std::vector<std::uint8_t> activeEdges;   ///< per triangle (see kAllEdgesActive)
+    std::vector<Vec3> normals;              ///< unit, per triangle, counter-clockwise side
+    std::vector<std::uint8_t> activeEdges;  ///< per triangle (see kAllEdgesActive)
+    /// Per triangle and edge k: the vertex (index into vertices) of the neighbour across it that
+    /// is not on the edge, or kNoNeighbour. With the triangle's own third vertex it bounds the
+    /// edge's normal cone (collide_mesh_edges.cpp).
+    std::vector<std::array<std::uint32_t, 3>> across;
     std::vector<std::uint32_t> sourceIndex;  ///< per triangle: its index in the input data
     std::vector<MeshBvhNode> nodes;          ///< nodes[0] is the root
     std::uint32_t droppedTriangles = 0;      ///< degenerate input triangles left out
@@ -53,6 +61,7 @@ struct HeightFieldGeometry {
     Real maxHeight = 0;  ///< (m)
     /// Per cell (row-major in j): bits 0-2 the edges of its lower triangle, 3-5 of its upper one.
     std::vector<std::uint8_t> activeEdges;
+    // The neighbour across an edge is found from the grid (detail::fieldAcross): none is stored.
 };
 
 /// A triangle of a mesh or height field, in the shape's local frame.
