@@ -1,6 +1,5 @@
 // ContactRows' build: the colouring, the bundles, and the copies in and out of the constraints.
 #include <algorithm>
-#include <bit>
 
 #include "tumble/solver/contact_rows.h"
 #include "tumble/solver/contact_solver.h"
@@ -24,66 +23,56 @@ void setLanes(Lane (&lanes)[3], int index, const Vec3& value) {
 
 }  // namespace
 
-// Greedy, in constraint order: each manifold takes the lowest colour neither of its moving
-// bodies has yet. Deterministic, and a manifold keeps its colour while the contacts before it
-// do not change.
+// Each manifold takes the colour after the last one either of its moving bodies had: every body
+// meets its manifolds in constraint order, and manifolds on disjoint bodies commute exactly, so a
+// sweep in colour order is the scalar sweep's Gauss-Seidel in constraint order to the bit. A
+// column of n levels has n colours (its chain is kept); a pyramid's rows fill the lanes.
 void ContactRows::colour(std::span<const SolverBody> bodies,
                          std::span<const ContactConstraint> constraints) {
-    bodyColours_.assign(bodies.size(), 0);
+    bodyNext_.assign(bodies.size(), 0);
     constraintColour_.resize(constraints.size());
-    colourCounts_.assign(kColours + 1, 0);
+    std::uint32_t colours = 0;
     for (std::size_t i = 0; i < constraints.size(); ++i) {
         const ContactConstraint& c = constraints[i];
         const bool movesA = moves(bodies[c.bodyA]);
         const bool movesB = moves(bodies[c.bodyB]);
-        const std::uint64_t used =
-            (movesA ? bodyColours_[c.bodyA] : 0) | (movesB ? bodyColours_[c.bodyB] : 0);
-        const int colour = used == ~std::uint64_t{0} ? kColours : std::countr_one(used);
-        constraintColour_[i] = static_cast<std::uint8_t>(colour);
-        ++colourCounts_[colour];
-        if (colour == kColours)
-            continue;
+        const std::uint32_t colour =
+            std::max(movesA ? bodyNext_[c.bodyA] : 0u, movesB ? bodyNext_[c.bodyB] : 0u);
+        constraintColour_[i] = colour;
         if (movesA)
-            bodyColours_[c.bodyA] |= std::uint64_t{1} << colour;
+            bodyNext_[c.bodyA] = colour + 1;
         if (movesB)
-            bodyColours_[c.bodyB] |= std::uint64_t{1} << colour;
+            bodyNext_[c.bodyB] = colour + 1;
+        colours = std::max(colours, colour + 1);
     }
+    colourCount_ = static_cast<int>(colours);
     // Constraints sorted by colour, in constraint order within one (a counting sort).
-    std::vector<std::uint32_t>& begin = colourCounts_;
-    std::uint32_t offset = 0;
-    colourCount_ = 0;
-    for (int colour = 0; colour <= kColours; ++colour) {
-        const std::uint32_t count = begin[colour];
-        if (count > 0 && colour < kColours)
-            colourCount_ = colour + 1;
-        begin[colour] = offset;
-        offset += count;
-    }
+    colourBegin_.assign(colours + 1, 0);
+    for (const std::uint32_t colour : constraintColour_)
+        ++colourBegin_[colour + 1];
+    for (std::size_t k = 1; k < colourBegin_.size(); ++k)
+        colourBegin_[k] += colourBegin_[k - 1];
+    colourNext_.assign(colourBegin_.begin(), colourBegin_.end() - 1);
     order_.resize(constraints.size());
     for (std::size_t i = 0; i < constraints.size(); ++i)
-        order_[begin[constraintColour_[i]]++] = static_cast<std::uint32_t>(i);
+        order_[colourNext_[constraintColour_[i]]++] = static_cast<std::uint32_t>(i);
 }
 
-void ContactRows::build(std::span<const SolverBody> bodies,
+bool ContactRows::build(std::span<const SolverBody> bodies,
                         std::span<const ContactConstraint> constraints,
                         const SolverSettings& settings, Real inverseH) {
     colour(bodies, constraints);
-    // After the sort colourCounts_[k] is the end of colour k.
     std::size_t bundleCount = 0;
-    std::uint32_t first = 0;
-    for (int colour = 0; colour <= kColours; ++colour) {
-        const std::uint32_t count = colourCounts_[colour] - first;
-        bundleCount += colour < kColours ? (count + kWidth - 1) / kWidth : count;
-        first = colourCounts_[colour];
-    }
+    for (int colour = 0; colour < colourCount_; ++colour)
+        bundleCount += (colourBegin_[colour + 1] - colourBegin_[colour] + kWidth - 1) / kWidth;
+    if (constraints.size() * kMinimumFillDenominator < bundleCount * kWidth)
+        return false;
     bundles_.resize(bundleCount);
     const auto dummy = static_cast<std::uint32_t>(bodies.size());
     std::size_t next = 0;
-    first = 0;
-    for (int colour = 0; colour <= kColours; ++colour) {
-        const std::uint32_t end = colourCounts_[colour];
-        const std::uint32_t width = colour < kColours ? kWidth : 1;
-        for (std::uint32_t start = first; start < end; start += width) {
+    for (int colour = 0; colour < colourCount_; ++colour) {
+        const std::uint32_t end = colourBegin_[colour + 1];
+        for (std::uint32_t start = colourBegin_[colour]; start < end; start += kWidth) {
             Bundle& bundle = bundles_[next++];
             bundle = Bundle{};
             bundle.bodyA.fill(dummy);
@@ -91,7 +80,7 @@ void ContactRows::build(std::span<const SolverBody> bodies,
             for (int k = 0; k < 16; ++k)
                 bundle.factor[k] = Lane{} + (k % 5 == 0 ? 1.0 : 0.0);  // identity
             bundle.factorSet.fill(NormalFactor::kNone);
-            const std::uint32_t lanes = std::min(width, end - start);
+            const std::uint32_t lanes = std::min<std::uint32_t>(kWidth, end - start);
             bundle.laneCount = static_cast<std::uint8_t>(lanes);
             for (std::uint32_t lane = 0; lane < lanes; ++lane) {
                 const std::uint32_t index = order_[start + lane];
@@ -102,10 +91,10 @@ void ContactRows::build(std::span<const SolverBody> bodies,
                 bundle.inverseMassB[lane] = bodies[c.bodyB].inverseMass;
             }
         }
-        first = end;
     }
     velocities_.resize(bodies.size() + 1);
     velocities_.back() = Velocity{};
+    return true;
 }
 
 // One manifold into one lane: the constraint's prepared Jacobians, masses and impulses, and its

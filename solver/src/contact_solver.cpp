@@ -291,9 +291,7 @@ void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
         }
         applyAngular(a, b, c.angularImpulse);
     }
-    wide_ = settings.colouredContacts;
-    if (wide_)
-        rows_.build(bodies, constraints, settings, 1 / h);
+    wide_ = settings.colouredContacts && rows_.build(bodies, constraints, settings, 1 / h);
 }
 
 void ContactSolver::dropBounceCorrections(std::span<ContactConstraint> constraints) {

@@ -46,7 +46,8 @@ void addRow(CaseResult& result, int base, const scenes::PileRun& run) {
                              {"lost_standing_s", run.lostStanding},
                              {"horiz_end_m", run.horizontalAtEnd},
                              {"vert_excess_m", run.verticalAtEnd},
-                             {"deepest_late_m", run.deepestLate}}});
+                             {"deepest_late_m", run.deepestLate},
+                             {"landing_spread_m", run.landingSpread}}});
 }
 
 CaseResult run(const CaseOptions& options) {
@@ -71,6 +72,7 @@ CaseResult run(const CaseOptions& options) {
         addRow(result, 40, large);
         result.metric("pyramid_40_standing_at_20_s", large.standingAtEnd ? 1 : 0);
         result.metric("pyramid_40_lost_standing_at_s", large.lostStanding);
+        result.metric("pyramid_40_landing_spread_m", large.landingSpread);
     }
     return result;
 }

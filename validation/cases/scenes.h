@@ -81,6 +81,7 @@ struct PileRun {
     Real topFell = -1;       ///< first time the top cube moved 0.5 m (s); -1: never
     Real topDriftMax = 0;    ///< largest horizontal offset of the top cube (m)
     Real deepestLate = 0;    ///< max of the solver's deepest penetration after `lateFrom` (m)
+    Real landingSpread = 0;  ///< largest Standing::horizontalOffset in the first 2 s (m)
     bool standingAtEnd = false;
     Real horizontalAtEnd = 0;  ///< Standing::horizontalOffset at the end (m)
     Real verticalAtEnd = 0;    ///< Standing::verticalExcess at the end (m)
@@ -90,7 +91,8 @@ struct PileRun {
 /// top "falls" when it moves 0.5 m horizontally or sinks 0.5 m beyond its allowed sink.
 inline PileRun runPile(World& world, const std::vector<BodyId>& cubes, const Standing& standing,
                        std::size_t top, Real duration, Real lateFrom) {
-    constexpr Real kFall = 0.5;  // (m)
+    constexpr Real kFall = 0.5;     // (m)
+    constexpr Real kLanding = 2.0;  // (s)
     PileRun run;
     const long steps = std::lround(duration / world.settings().timeStep);
     const Real topSink = (standing.levels[top] + 1) * standing.allowedSink;
@@ -107,6 +109,9 @@ inline PileRun runPile(World& world, const std::vector<BodyId>& cubes, const Sta
             run.topFell = t;
         if (run.lostStanding < 0 && !standing.holds(world, cubes))
             run.lostStanding = t;
+        if (t <= kLanding + 1e-9)
+            run.landingSpread =
+                std::max(run.landingSpread, standing.horizontalOffset(world, cubes));
         if (t >= lateFrom - 1e-9) {
             run.deepestLate = std::max(run.deepestLate, world.solverStats().deepestPenetration);
         }

@@ -60,9 +60,10 @@ struct SolverSettings {
     /// outward (engine/src/anchor_table.h).
     bool frictionAnchors = false;
     /// The contact sweeps on wide rows of four manifolds coloured so that none of a colour
-    /// share a moving body (contact_rows.h): the same rows, updated in colour order. Off: the
-    /// scalar sweep in constraint order (ContactSolver), the default: with the greedy colours a
-    /// base-40 pyramid loses standing at 0.30 s instead of 7.28 s (docs/validation.md).
+    /// share a moving body (contact_rows.h): the same rows, coloured so that every body meets
+    /// its manifolds in constraint order, so the same bits as the scalar sweep (ContactSolver,
+    /// off). Off by default: faster on pyramids (0.64x), not on a lone column or a pile
+    /// (bench/README.md, the colour order).
     bool colouredContacts = false;
 };
 

@@ -4,13 +4,18 @@
 /// exactly, the angular friction rows, the exactly solved groups -- laid out for four
 /// manifolds at a time.
 ///
-/// Colouring. Manifolds are coloured greedily in constraint order so that no two of one colour
-/// share a body that can move (static and kinematic bodies never colour: the rows never change
-/// their velocity). A colour's manifolds are independent, so four of them are updated together,
-/// one per lane; within a sweep the colours run in order, and within a colour the bundles.
-/// Gauss-Seidel then updates the manifolds in colour order instead of constraint order: the same
-/// fixed point, other rounding and other intermediate iterates. Manifolds a colour cannot take
-/// (more than kColours colours around one body) are solved alone, one lane of four.
+/// Colouring (chains). A manifold's colour is one after the last colour either of its moving
+/// bodies has met, in constraint order (static and kinematic bodies never colour: the rows never
+/// change their velocity). A colour's manifolds are independent, so four of them are updated
+/// together, one per lane; within a sweep the colours run in order, and within a colour the
+/// bundles. Every body then meets its manifolds in constraint order and updates on disjoint
+/// bodies commute exactly, so the sweep is the scalar sweep's Gauss-Seidel to the bit: a tall
+/// column keeps its bottom-to-top chain (one manifold per colour), a pyramid's rows fill the
+/// lanes. Where the colours leave the lanes mostly empty (fewer manifolds than half the lanes:
+/// a lone column) the rows are not built and the scalar sweep runs instead -- same bits, less
+/// work. (Greedy colours, lowest free colour per manifold, filled the lanes of a column too but
+/// alternated its levels: 1.9x the scalar sweep's penetration on stack-20, a base-40 pyramid's
+/// landing spread 0.150 m against 0.045 m; bench/README.md, the colour-order study.)
 ///
 /// Lanes. A lane is four doubles (GCC/Clang vector extension, 32 bytes): each operation is the
 /// IEEE operation per lane, so the bits do not depend on the ISA the compiler picks (AVX2 or two
@@ -44,11 +49,13 @@ using LaneMask = std::int64_t __attribute__((vector_size(32), aligned(32)));
 class ContactRows {
 public:
     static constexpr int kWidth = 4;
-    static constexpr int kColours = 64;
+    /// The rows are built when manifolds >= lanes / kMinimumFillDenominator.
+    static constexpr std::size_t kMinimumFillDenominator = 2;
 
     /// Colours the prepared constraints and builds the rows from them (their Jacobians, masses,
-    /// targets and warm-start impulses). Allocates only when the arrays grow.
-    void build(std::span<const SolverBody> bodies, std::span<const ContactConstraint> constraints,
+    /// targets and warm-start impulses); false, with no rows built, when the colours would fill
+    /// fewer than half the lanes. Allocates only when the arrays grow.
+    bool build(std::span<const SolverBody> bodies, std::span<const ContactConstraint> constraints,
                const SolverSettings& settings, Real inverseH);
     /// One sweep over the rows, as ContactSolver::solveVelocitySweep (which calls it) without
     /// the exactly solved groups; returns the largest velocity change (m/s) when measuring.
@@ -61,7 +68,7 @@ public:
     void dropBounceCorrections();
     /// Writes the impulses back into the constraints (warm start of the next step, reports).
     void store(std::span<ContactConstraint> constraints) const;
-    /// Number of colours of the last build (the overflow of solo manifolds not counted).
+    /// Number of colours of the last build.
     int colourCount() const { return colourCount_; }
 
 private:
@@ -113,11 +120,12 @@ private:
     void scatter(const Bundle& bundle, const Lane (&v)[2][6]);
 
     std::vector<Bundle> bundles_;
-    std::vector<Velocity> velocities_;  // per body, then the dummy of the padding lanes
-    std::vector<std::uint64_t> bodyColours_;
-    std::vector<std::uint8_t> constraintColour_;  // kColours: solo
-    std::vector<std::uint32_t> colourCounts_;
-    std::vector<std::uint32_t> order_;
+    std::vector<Velocity> velocities_;     // per body, then the dummy of the padding lanes
+    std::vector<std::uint32_t> bodyNext_;  // per body: the lowest colour its next manifold may take
+    std::vector<std::uint32_t> constraintColour_;
+    std::vector<std::uint32_t> colourBegin_;  // per colour, then the end
+    std::vector<std::uint32_t> colourNext_;
+    std::vector<std::uint32_t> order_;  // constraints by colour, constraint order within one
     int colourCount_ = 0;
 };
 
