@@ -66,8 +66,10 @@ private:
     Real projectionErrors(const BodyStore& bodies, const SpringStore& springs,
                           const StepContext& context);
     /// Friction anchors (split impulse): this solve's drifts and the anchor pass on pseudo_.
+    /// Contacts of a body a spring holds are left out (see the definition).
     void holdAnchors(const BodyStore& bodies, const ContactManager& contacts,
-                     std::span<const ContactConstraint> constraints, const StepContext& context);
+                     const SpringStore& springs, std::span<const ContactConstraint> constraints,
+                     const StepContext& context);
 
     ConstraintSolver solver_;
     std::vector<SolverBody> solverBodies_;
@@ -99,6 +101,7 @@ private:
     AnchorTable anchors_;  ///< empty unless SolverSettings::frictionAnchors
     FrictionAnchorPass anchorPass_;
     std::vector<Vec3> anchorDrifts_;  ///< 4 per constraint
+    std::vector<char> sprung_;        ///< by solver body: a spring ends on it
 };
 
 /// Mixing rules for a pair of materials: friction by geometric mean (a frictionless surface
