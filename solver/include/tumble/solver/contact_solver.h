@@ -54,6 +54,7 @@
 #include "tumble/solver/contact_rows.h"
 #include "tumble/solver/normal_islands.h"
 #include "tumble/solver/solver_body.h"
+#include "tumble/solver/sweep_rows.h"
 
 namespace tumble {
 
@@ -186,8 +187,8 @@ public:
     /// Split impulse's relax sweeps aim at the rebound alone: drops the bounces' position
     /// correction (normalTarget) before them.
     void dropBounceCorrections(std::span<ContactConstraint> constraints);
-    /// After the last sweep: the impulses are back in the constraints (wide rows only; the
-    /// narrow path works in them).
+    /// After the last sweep: the impulses are back in the constraints (from the wide or the
+    /// compact narrow rows).
     void finish(std::span<ContactConstraint> constraints) const;
 
 private:
@@ -196,6 +197,7 @@ private:
     std::vector<SolverBody> supportBodies_;  ///< scratch of addSupportAcceleration
     std::vector<NormalFactor> factors_;      ///< each manifold's block factor, this step
     ContactRows rows_;                       ///< the wide rows (settings.colouredContacts)
+    SweepRows narrow_;                       ///< the scalar sweep's compact rows, otherwise
     bool wide_ = false;                      ///< this step sweeps rows_
 };
 
