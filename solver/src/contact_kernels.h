@@ -12,17 +12,9 @@
 namespace tumble {
 
 /// The coupled friction update of one point: the impulse in the disc |lambda| <= radius that
-/// removes as much of the slip vt as the block K allows, from the impulse `old`. `block` and
-/// `inverse` are K and K^-1; `rim` (its moments and axes) is read only when the free answer
-/// leaves the disc, so the sweep keeps the first two in its compact rows.
-Eigen::Matrix<Real, 2, 1> solveDisc(const Eigen::Matrix<Real, 2, 2>& block,
-                                    const Eigen::Matrix<Real, 2, 2>& inverse, const DiscBlock& rim,
-                                    const Eigen::Matrix<Real, 2, 1>& old,
+/// removes as much of the slip vt as the block k allows, from the impulse `old`.
+Eigen::Matrix<Real, 2, 1> solveDisc(const DiscBlock& k, const Eigen::Matrix<Real, 2, 1>& old,
                                     const Eigen::Matrix<Real, 2, 1>& vt, Real radius);
-inline Eigen::Matrix<Real, 2, 1> solveDisc(const DiscBlock& k, const Eigen::Matrix<Real, 2, 1>& old,
-                                           const Eigen::Matrix<Real, 2, 1>& vt, Real radius) {
-    return solveDisc(k.block, k.inverse, k, old, vt, radius);
-}
 
 /// Torsion and rolling resistance of one manifold, with its current normal impulses; returns the
 /// change as a speed at the farthest point (m/s).

@@ -127,16 +127,15 @@ Impact impactWithinStep(Real s, Real vEnd, Real a, Real h) {
 // Sliding case: a trust-region problem; lambda(nu) = (K + nu 1)^-1 b with b = K old - vt, and the
 // multiplier nu >= 0 solves |lambda(nu)| = r. Newton on 1/|lambda(nu)| - 1/r, which is concave
 // and increasing in nu, converges monotonically from nu = 0 (More & Sorensen).
-Vec2 solveDisc(const Mat2& block, const Mat2& inverse, const DiscBlock& rim, const Vec2& old,
-               const Vec2& vt, Real radius) {
+Vec2 solveDisc(const DiscBlock& k, const Vec2& old, const Vec2& vt, Real radius) {
     if (radius <= 0)
         return Vec2::Zero();
-    const Vec2 b = block * old - vt;
-    const Vec2 free = inverse * b;
+    const Vec2 b = k.block * old - vt;
+    const Vec2 free = k.inverse * b;
     if (free.squaredNorm() <= radius * radius)
         return free;
-    const Vec2& moments = rim.moments;
-    const Vec2 c = rim.axes.transpose() * b;
+    const Vec2& moments = k.moments;
+    const Vec2 c = k.axes.transpose() * b;
     Real nu = 0;
     for (int iteration = 0; iteration < 20; ++iteration) {
         const Vec2 q = c.cwiseQuotient(moments + Vec2::Constant(nu));  // lambda in the eigenbasis
@@ -149,7 +148,7 @@ Vec2 solveDisc(const Mat2& block, const Mat2& inverse, const DiscBlock& rim, con
         if (std::abs(step) <= 1e-12 * (nu + moments.maxCoeff()))
             break;
     }
-    const Vec2 lambda = rim.axes * c.cwiseQuotient(moments + Vec2::Constant(nu));
+    const Vec2 lambda = k.axes * c.cwiseQuotient(moments + Vec2::Constant(nu));
     return lambda * (radius / lambda.norm());  // on the rim to rounding
 }
 

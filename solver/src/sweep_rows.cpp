@@ -9,7 +9,6 @@
 namespace tumble {
 namespace {
 
-using Mat2 = Eigen::Matrix<Real, 2, 2>;
 using Vec2 = Eigen::Matrix<Real, 2, 1>;
 
 // The friction rows of one manifold's points (contact_solver.h): coupled on the disc, or the
@@ -30,9 +29,7 @@ Real solveFriction(SolverBody& a, SolverBody& b, const SweepManifold& m, SweepPo
         const Real limit = m.friction * p.normalImpulse;
         Vec2 next;
         if (settings.friction == FrictionModel::Coupled) {
-            const Vec2 solved =
-                solveDisc(p.tangentBlock, p.tangentInverse, c.points[i].tangent, old, vt, limit);
-            next = old + omega * (solved - old);
+            next = old + omega * (solveDisc(p.tangent, old, vt, limit) - old);
         } else {
             const std::array<Real, 2>& mass = c.points[i].tangentMass;
             next = (old - omega * Vec2(mass[0] * vt(0), mass[1] * vt(1)))
@@ -47,7 +44,7 @@ Real solveFriction(SolverBody& a, SolverBody& b, const SweepManifold& m, SweepPo
         b.angularVelocity += delta.x() * p.tangentImpulseB[0] + delta.y() * p.tangentImpulseB[1];
         p.tangentImpulse = {next.x(), next.y()};
         if (settings.tolerance > 0)
-            largestChange = std::max(largestChange, (p.tangentBlock * delta).norm());
+            largestChange = std::max(largestChange, (p.tangent.block * delta).norm());
     }
     return largestChange;
 }
@@ -85,8 +82,7 @@ void SweepRows::add(const ContactConstraint& c, std::uint32_t index,
         SweepPoint& p = points_.emplace_back();
         p.tangentAngularA = q.tangentAngularA;
         p.tangentAngularB = q.tangentAngularB;
-        p.tangentBlock = q.tangent.block;
-        p.tangentInverse = q.tangent.inverse;
+        p.tangent = q.tangent;
         p.tangentImpulse = q.tangentImpulse;
         p.normalImpulse = q.normalImpulse;
         p.normalMass = q.normalMass;

@@ -5,8 +5,8 @@
 /// pile-4000 the sweeps streamed ~35 MB twenty times a step, past the 32 MB L3 (the time per
 /// step grew 3.45x from 2k to 4k bodies). Here each manifold is a small header and its points
 /// follow one another in a second array, holding only what a sweep reads or writes; the rest
-/// (the disc's eigen-decomposition, the box model's masses, the angular friction rows) is read
-/// from the constraint in the rare cases that need it. The arithmetic is ContactSolver's, on
+/// (the box model's masses, the angular friction rows, the report fields) is read from the
+/// constraint in the rare cases that need it. The arithmetic is ContactSolver's, on
 /// the same values in the same order: the trajectories are bitwise those of the constraints.
 
 #include <array>
@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "tumble/core/solver_types.h"
+#include "tumble/solver/disc_block.h"
 #include "tumble/solver/solver_body.h"
 
 namespace tumble {
@@ -25,10 +26,9 @@ struct NormalFactor;
 /// A point's rows, in the order the sweep reads them (names as ContactConstraintPoint's, so the
 /// normal kernels of normal_block.h take either).
 struct SweepPoint {
-    std::array<Vec3, 2> tangentAngularA{};                                         ///< rA x t_k (m)
-    std::array<Vec3, 2> tangentAngularB{};                                         ///< rB x t_k (m)
-    Eigen::Matrix<Real, 2, 2> tangentBlock = Eigen::Matrix<Real, 2, 2>::Zero();    ///< K
-    Eigen::Matrix<Real, 2, 2> tangentInverse = Eigen::Matrix<Real, 2, 2>::Zero();  ///< K^-1
+    std::array<Vec3, 2> tangentAngularA{};  ///< rA x t_k (m)
+    std::array<Vec3, 2> tangentAngularB{};  ///< rB x t_k (m)
+    DiscBlock tangent;  ///< K on the tangent plane, with its inverse and eigen-decomposition
     std::array<Real, 2> tangentImpulse{};   ///< along t_1, t_2 (N s)
     Real normalImpulse = 0;                 ///< (N s)
     Real normalMass = 0;                    ///< (kg)
