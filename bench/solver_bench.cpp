@@ -118,6 +118,7 @@ void BM_SceneSweepRow(benchmark::State& state, bench::SceneKind kind, int size,
     double seconds = 0;
     double rowSweeps = 0;
     double rows = 0;
+    double manifolds = 0;
     for (auto _ : state) {
         const double start = threadSeconds();
         run.step();
@@ -125,12 +126,18 @@ void BM_SceneSweepRow(benchmark::State& state, bench::SceneKind kind, int size,
         const SolverProfile& p = world.profile().solveStages;
         seconds += cpu * (p.velocity + p.relax) / world.profile().total;
         rows = 0;
-        for (const Contact& c : world.contacts())
+        manifolds = 0;
+        for (const Contact& c : world.contacts()) {
             rows += c.manifold.pointCount * (settings.friction > 0 ? 3.0 : 1.0);
+            manifolds += c.manifold.pointCount > 0 ? 1 : 0;
+        }
         rowSweeps +=
             rows * (world.solverStats().iterations + world.settings().solver.relaxIterations);
     }
     state.counters["contact_rows"] = rows;
+    // Points per manifold: the scalar sweep's compact rows store only these (sweep_rows.h).
+    state.counters["points_per_manifold"] =
+        manifolds > 0 ? rows / (settings.friction > 0 ? 3.0 : 1.0) / manifolds : 0;
     state.counters["ns_per_row_sweep"] = rowSweeps > 0 ? 1e9 * seconds / rowSweeps : 0;
 }
 BENCHMARK_CAPTURE(BM_SceneSweepRow, pyramid20, bench::SceneKind::Pyramid, 20)

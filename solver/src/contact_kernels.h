@@ -1,9 +1,12 @@
 #pragma once
-/// The per-manifold pieces of the contact sweep that ContactSolver and ContactRows share
-/// (contact_solver.cpp holds their derivations).
+/// The per-manifold pieces of the contact sweep that ContactSolver, SweepRows and ContactRows
+/// share (contact_solver.cpp holds their derivations).
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
 
+#include "normal_block.h"
 #include "tumble/solver/contact_solver.h"
 
 namespace tumble {
@@ -17,11 +20,55 @@ Eigen::Matrix<Real, 2, 1> solveDisc(const DiscBlock& k, const Eigen::Matrix<Real
 /// change as a speed at the farthest point (m/s).
 Real solveAngularFriction(SolverBody& a, SolverBody& b, ContactConstraint& c, Real omega);
 
-/// The normal rows of one manifold: its block solved exactly (normal_block.h) with the cached
-/// factor, or point by point when it has one point or the block is degenerate. Raises
+/// The normal rows of one manifold of n points (Point: ContactConstraintPoint or SweepPoint):
+/// its block K solved exactly (normal_block.h) with the cached factor, or point by point when it
+/// has one point or the block is degenerate. K is read only when n > 1 or when measuring. Raises
 /// largestChange to the velocity change when settings.tolerance > 0.
-void solveManifoldNormals(SolverBody& a, SolverBody& b, ContactConstraint& c, NormalFactor& factor,
-                          const SolverSettings& settings, Real inverseH, Real bias,
-                          Real& largestChange);
+template <class Point>
+void solveNormals(SolverBody& a, SolverBody& b, const Vec3& normal, const Mat4* k, Point* points,
+                  int n, NormalFactor& factor, const SolverSettings& settings, Real inverseH,
+                  Real bias, Real& largestChange) {
+    const Real omega = settings.relaxation;
+    Vec4 old = Vec4::Zero();
+    Vec4 next = Vec4::Zero();
+    Vec4 gap = Vec4::Zero();  // v_n - target with the current impulses (m/s)
+    for (int i = 0; i < n; ++i) {
+        const Point& p = points[i];
+        old(i) = p.normalImpulse;
+        gap(i) = normalSpeed(a, b, normal, p) - normalTarget(p, bias, settings.slop, inverseH);
+    }
+    Vec4 exact = old;
+    if (n > 1 && solveNormalBlock(*k, n, gap - *k * old, exact, factor)) {
+        next = (old + omega * (exact - old)).cwiseMax(0);
+        for (int i = 0; i < n; ++i)
+            applyNormal(a, b, normal, points[i], next(i) - old(i));
+    } else {
+        // One point, or a degenerate block: the points one by one.
+        for (int i = 0; i < n; ++i) {
+            Point& p = points[i];
+            const Real vn =
+                normalSpeed(a, b, normal, p) - normalTarget(p, bias, settings.slop, inverseH);
+            next(i) = std::max<Real>(0, old(i) - omega * p.normalMass * vn);
+            applyNormal(a, b, normal, p, next(i) - old(i));
+        }
+    }
+    for (int i = 0; i < n; ++i)
+        points[i].normalImpulse = next(i);
+    // The velocity change each point sees: a shift of load between the legs of a face, which the
+    // block's minimum-norm choice may make, moves nothing and does not count.
+    if (settings.tolerance > 0) {
+        const Vec4 change = *k * (next - old);
+        for (int i = 0; i < n; ++i)
+            largestChange = std::max(largestChange, std::abs(change(i)));
+    }
+}
+
+/// solveNormals on a constraint's own points and block.
+inline void solveManifoldNormals(SolverBody& a, SolverBody& b, ContactConstraint& c,
+                                 NormalFactor& factor, const SolverSettings& settings,
+                                 Real inverseH, Real bias, Real& largestChange) {
+    solveNormals(a, b, c.normal, &c.normalBlock, c.points.data(), c.pointCount, factor, settings,
+                 inverseH, bias, largestChange);
+}
 
 }  // namespace tumble

@@ -280,6 +280,9 @@ void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
     // Warm start only once every approach speed is measured: applied point by point above, the
     // cached impulses of earlier contacts leaked into the approach speeds of later ones, and a
     // row of touching elastic balls (Newton's cradle) gained energy with every collision.
+    // The scalar sweep's compact rows are copied here, while each constraint is in cache.
+    wide_ = settings.colouredContacts;
+    narrow_.clear();
     for (ContactConstraint& c : constraints) {
         SolverBody& a = bodies[c.bodyA];
         SolverBody& b = bodies[c.bodyB];
@@ -290,8 +293,16 @@ void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
                           p.tangentImpulse[1] * c.tangents[1]);
         }
         applyAngular(a, b, c.angularImpulse);
+        if (!wide_)
+            narrow_.add(c, static_cast<std::uint32_t>(&c - constraints.data()), settings);
     }
-    wide_ = settings.colouredContacts && rows_.build(bodies, constraints, settings, 1 / h);
+    // Rows too sparse to fill the lanes (a lone column) fall back to the scalar sweep, which
+    // gives the same bits.
+    if (wide_ && !rows_.build(bodies, constraints, settings, 1 / h)) {
+        wide_ = false;
+        for (ContactConstraint& c : constraints)
+            narrow_.add(c, static_cast<std::uint32_t>(&c - constraints.data()), settings);
+    }
 }
 
 void ContactSolver::dropBounceCorrections(std::span<ContactConstraint> constraints) {
@@ -301,11 +312,15 @@ void ContactSolver::dropBounceCorrections(std::span<ContactConstraint> constrain
     }
     if (wide_)
         rows_.dropBounceCorrections();
+    else
+        narrow_.dropBounceCorrections();
 }
 
 void ContactSolver::finish(std::span<ContactConstraint> constraints) const {
     if (wide_)
         rows_.store(constraints);
+    else
+        narrow_.store(constraints);
 }
 
 Real ContactSolver::solveVelocitySweep(std::span<SolverBody> bodies,
@@ -321,58 +336,12 @@ Real ContactSolver::solveVelocitySweep(std::span<SolverBody> bodies,
         }
         return largestChange;
     }
-    const Real omega = settings.relaxation;
-    Real largestChange = 0;
-    // The change is read only to stop early; measuring it was a tenth of the friction rows.
-    const bool measure = settings.tolerance > 0;
-    for (ContactConstraint& c : constraints) {
-        SolverBody& a = bodies[c.bodyA];
-        SolverBody& b = bodies[c.bodyB];
-        // Friction first, with the normal impulses of the last sweep: non-penetration, solved
-        // last, matters more.
-        if (c.friction > 0) {
-            for (int i = 0; i < c.pointCount; ++i) {
-                ContactConstraintPoint& p = c.points[i];
-                const Vec3 dv = b.linearVelocity - a.linearVelocity;
-                Vec2 vt;
-                for (int r = 0; r < 2; ++r) {
-                    vt(r) = c.tangents[r].dot(dv) + p.tangentAngularB[r].dot(b.angularVelocity) -
-                            p.tangentAngularA[r].dot(a.angularVelocity);
-                }
-                const Vec2 old(p.tangentImpulse[0], p.tangentImpulse[1]);
-                const Real limit = c.friction * p.normalImpulse;
-                Vec2 next;
-                if (settings.friction == FrictionModel::Coupled) {
-                    next = old + omega * (solveDisc(p.tangent, old, vt, limit) - old);
-                } else {
-                    next = (old - omega * Vec2(p.tangentMass[0] * vt(0), p.tangentMass[1] * vt(1)))
-                               .cwiseMax(-limit)
-                               .cwiseMin(limit);
-                }
-                const Vec2 delta = next - old;
-                const Vec3 linear = delta.x() * c.tangents[0] + delta.y() * c.tangents[1];
-                a.linearVelocity -= a.inverseMass * linear;
-                a.angularVelocity -=
-                    delta.x() * p.tangentImpulseA[0] + delta.y() * p.tangentImpulseA[1];
-                b.linearVelocity += b.inverseMass * linear;
-                b.angularVelocity +=
-                    delta.x() * p.tangentImpulseB[0] + delta.y() * p.tangentImpulseB[1];
-                p.tangentImpulse = {next.x(), next.y()};
-                if (measure)
-                    largestChange = std::max(largestChange, (p.tangent.block * delta).norm());
-            }
-        }
-        if (c.spinMass > 0 || c.rollingActive)
-            largestChange = std::max(largestChange, solveAngularFriction(a, b, c, omega));
-        if (c.normalGroup == NormalIslands::kNone) {
-            solveManifoldNormals(a, b, c, factors_[&c - constraints.data()], settings, inverseH,
-                                 bias, largestChange);
-        }
-    }
+    Real largestChange = narrow_.sweep(bodies, constraints, factors_, settings, inverseH, bias);
     if (!islands_.empty()) {
         largestChange =
             std::max(largestChange, islands_.solve(bodies, constraints, settings.relaxation, bias,
                                                    settings.slop, inverseH));
+        narrow_.readGroupImpulses(constraints);
     }
     return largestChange;
 }
@@ -415,47 +384,6 @@ Real solveAngularFriction(SolverBody& a, SolverBody& b, ContactConstraint& c, Re
     // The change of relative spin (rad/s), as a speed at the farthest contact point (m/s), so
     // the tolerance, in m/s, sees it.
     return std::max(spinChange, rollingChange) * c.angularReach;
-}
-
-void solveManifoldNormals(SolverBody& a, SolverBody& b, ContactConstraint& c, NormalFactor& factor,
-                          const SolverSettings& settings, Real inverseH, Real bias,
-                          Real& largestChange) {
-    const Real omega = settings.relaxation;
-    const int n = c.pointCount;
-    Vec4 old = Vec4::Zero();
-    Vec4 next = Vec4::Zero();
-    Vec4 gap = Vec4::Zero();  // v_n - target with the current impulses (m/s)
-    for (int i = 0; i < n; ++i) {
-        const ContactConstraintPoint& p = c.points[i];
-        old(i) = p.normalImpulse;
-        gap(i) = normalSpeed(a, b, c.normal, p) - normalTarget(p, bias, settings.slop, inverseH);
-    }
-    Vec4 exact = old;
-    if (n > 1 && solveNormalBlock(c.normalBlock, n, gap - c.normalBlock * old, exact, factor)) {
-        next = (old + omega * (exact - old)).cwiseMax(0);
-        for (int i = 0; i < n; ++i)
-            applyNormal(a, b, c.normal, c.points[i], next(i) - old(i));
-    } else {
-        // One point, or a degenerate block: the points one by one.
-        for (int i = 0; i < n; ++i) {
-            ContactConstraintPoint& p = c.points[i];
-            const Real vn =
-                normalSpeed(a, b, c.normal, p) - normalTarget(p, bias, settings.slop, inverseH);
-            next(i) = std::max<Real>(0, old(i) - omega * p.normalMass * vn);
-            applyNormal(a, b, c.normal, p, next(i) - old(i));
-        }
-    }
-    for (int i = 0; i < n; ++i) {
-        ContactConstraintPoint& p = c.points[i];
-        p.normalImpulse = next(i);
-    }
-    // The velocity change each point sees: a shift of load between the legs of a face, which the
-    // block's minimum-norm choice may make, moves nothing and does not count.
-    if (settings.tolerance > 0) {
-        const Vec4 change = c.normalBlock * (next - old);
-        for (int i = 0; i < n; ++i)
-            largestChange = std::max(largestChange, std::abs(change(i)));
-    }
 }
 
 Real ContactSolver::residual(std::span<const SolverBody> bodies,

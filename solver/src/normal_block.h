@@ -43,15 +43,16 @@ constexpr Real kNormalFloor = 1e-12;
 bool solveNormalBlock(const Mat4& k, int n, const Vec4& c, Vec4& lambda, NormalFactor& factor);
 
 // v_n = n . (vB + wB x rB - vA - wA x rA), with the angular parts precomputed by prepare().
-inline Real normalSpeed(const SolverBody& a, const SolverBody& b, const Vec3& n,
-                        const ContactConstraintPoint& p) {
+// Point: a ContactConstraintPoint or the sweep's SweepPoint (the same fields).
+template <class Point>
+inline Real normalSpeed(const SolverBody& a, const SolverBody& b, const Vec3& n, const Point& p) {
     return n.dot(b.linearVelocity - a.linearVelocity) + p.angularB.dot(b.angularVelocity) -
            p.angularA.dot(a.angularVelocity);
 }
 
 // A normal impulse lambda n on B at the point, -lambda n on A.
-inline void applyNormal(SolverBody& a, SolverBody& b, const Vec3& n,
-                        const ContactConstraintPoint& p, Real lambda) {
+template <class Point>
+inline void applyNormal(SolverBody& a, SolverBody& b, const Vec3& n, const Point& p, Real lambda) {
     a.linearVelocity -= (a.inverseMass * lambda) * n;
     a.angularVelocity -= lambda * p.angularImpulseA;
     b.linearVelocity += (b.inverseMass * lambda) * n;
@@ -74,7 +75,8 @@ inline void applyNormal(SolverBody& a, SolverBody& b, const Vec3& n,
 // a speculative point that bounced (bounceCorrection), which so moves the position only. Solved
 // as a separate pass on the bouncing points, that pull-back lifted a 0.1 kg box resting under a
 // ball by 1.9 cm, and the ball's next apex with it.
-inline Real normalTarget(const ContactConstraintPoint& p, Real bias, Real slop, Real inverseH) {
+template <class Point>
+inline Real normalTarget(const Point& p, Real bias, Real slop, Real inverseH) {
     const Real push =
         p.separation > 0 ? 0 : bias * inverseH * std::max<Real>(0, -p.separation - slop);
     if (p.bounces)

@@ -52,8 +52,10 @@
 
 #include "tumble/core/solver_types.h"
 #include "tumble/solver/contact_rows.h"
+#include "tumble/solver/disc_block.h"
 #include "tumble/solver/normal_islands.h"
 #include "tumble/solver/solver_body.h"
+#include "tumble/solver/sweep_rows.h"
 
 namespace tumble {
 
@@ -64,19 +66,6 @@ std::array<Vec3, 2> frictionBasis(const Vec3& n);
 
 /// Refuses (InvalidArgument) settings outside the ranges documented on each field.
 void checkSolverSettings(const SolverSettings& settings);
-
-/// A symmetric positive definite 2x2 block K (velocity change per unit impulse of two coupled
-/// rows) with what the solve of an impulse limited to a disc needs: friction at a point (linear)
-/// and rolling resistance (angular).
-struct DiscBlock {
-    Eigen::Matrix<Real, 2, 2> block = Eigen::Matrix<Real, 2, 2>::Zero();    ///< K
-    Eigen::Matrix<Real, 2, 2> inverse = Eigen::Matrix<Real, 2, 2>::Zero();  ///< K^-1
-    /// K = axes diag(moments) axes': its eigen-decomposition, for the case on the rim
-    Eigen::Matrix<Real, 2, 1> moments = Eigen::Matrix<Real, 2, 1>::Zero();
-    Eigen::Matrix<Real, 2, 2> axes = Eigen::Matrix<Real, 2, 2>::Identity();
-    /// Fills the members from K; false (and all zero) when K is singular.
-    bool set(const Eigen::Matrix<Real, 2, 2>& k);
-};
 
 /// The Cholesky factor L of K_SS + eps 1 for one active set S. K (normal_block.h) is fixed for a
 /// step and the active set rarely changes between sweeps, so each manifold keeps the last one it
@@ -186,8 +175,8 @@ public:
     /// Split impulse's relax sweeps aim at the rebound alone: drops the bounces' position
     /// correction (normalTarget) before them.
     void dropBounceCorrections(std::span<ContactConstraint> constraints);
-    /// After the last sweep: the impulses are back in the constraints (wide rows only; the
-    /// narrow path works in them).
+    /// After the last sweep: the impulses are back in the constraints (from the wide or the
+    /// compact narrow rows).
     void finish(std::span<ContactConstraint> constraints) const;
 
 private:
@@ -196,6 +185,7 @@ private:
     std::vector<SolverBody> supportBodies_;  ///< scratch of addSupportAcceleration
     std::vector<NormalFactor> factors_;      ///< each manifold's block factor, this step
     ContactRows rows_;                       ///< the wide rows (settings.colouredContacts)
+    SweepRows narrow_;                       ///< the scalar sweep's compact rows, otherwise
     bool wide_ = false;                      ///< this step sweeps rows_
 };
 

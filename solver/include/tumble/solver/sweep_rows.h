@@ -1,0 +1,88 @@
+#pragma once
+/// The scalar contact sweep's own compact copy of the prepared constraints (the default path;
+/// the coloured one has ContactRows). A ContactConstraint keeps four point slots of 576 bytes
+/// whatever its point count, with the prepare and report fields between the swept ones: on
+/// pile-4000 the sweeps streamed ~35 MB twenty times a step, past the 32 MB L3 (the time per
+/// step grew 3.45x from 2k to 4k bodies). Here each manifold is a small header and its points
+/// follow one another in a second array, holding only what a sweep reads or writes; the rest
+/// (the box model's masses, the angular friction rows, the report fields) is read from the
+/// constraint in the rare cases that need it. The arithmetic is ContactSolver's, on
+/// the same values in the same order: the trajectories are bitwise those of the constraints.
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "tumble/core/solver_types.h"
+#include "tumble/solver/disc_block.h"
+#include "tumble/solver/solver_body.h"
+
+namespace tumble {
+
+struct ContactConstraint;  // contact_solver.h, which holds a SweepRows
+struct NormalFactor;
+
+/// A point's rows, in the order the sweep reads them (names as ContactConstraintPoint's, so the
+/// normal kernels of normal_block.h take either).
+struct SweepPoint {
+    std::array<Vec3, 2> tangentAngularA{};  ///< rA x t_k (m)
+    std::array<Vec3, 2> tangentAngularB{};  ///< rB x t_k (m)
+    DiscBlock tangent;  ///< K on the tangent plane, with its inverse and eigen-decomposition
+    std::array<Real, 2> tangentImpulse{};   ///< along t_1, t_2 (N s)
+    Real normalImpulse = 0;                 ///< (N s)
+    Real normalMass = 0;                    ///< (kg)
+    std::array<Vec3, 2> tangentImpulseA{};  ///< IA^-1 (rA x t_k)
+    std::array<Vec3, 2> tangentImpulseB{};  ///< IB^-1 (rB x t_k)
+    Vec3 angularA = Vec3::Zero();           ///< rA x n (m)
+    Vec3 angularB = Vec3::Zero();           ///< rB x n (m)
+    Real separation = 0;                    ///< (m), for normalTarget
+    Real reboundSpeed = 0;                  ///< (m/s)
+    Real bounceCorrection = 0;              ///< (m)
+    Vec3 angularImpulseA = Vec3::Zero();    ///< IA^-1 (rA x n)
+    Vec3 angularImpulseB = Vec3::Zero();    ///< IB^-1 (rB x n)
+    bool bounces = false;
+};
+
+/// A manifold's header: its bodies, basis and where its points and block are.
+struct SweepManifold {
+    static constexpr std::uint32_t kNoBlock = ~0u;
+    std::uint32_t bodyA = 0;
+    std::uint32_t bodyB = 0;
+    std::uint32_t constraint = 0;    ///< index of its ContactConstraint
+    std::uint32_t firstPoint = 0;    ///< into the points array
+    std::uint32_t block = kNoBlock;  ///< into the blocks array: several points, or measuring
+    std::uint8_t pointCount = 0;
+    bool angular = false;  ///< spinning or rolling rows
+    bool grouped = false;  ///< normal rows solved by NormalIslands
+    Vec3 normal = Vec3::UnitZ();
+    std::array<Vec3, 2> tangents{};
+    Real friction = 0;
+};
+
+class SweepRows {
+public:
+    /// Empties the rows, keeping their storage.
+    void clear();
+    /// Appends prepared constraint `index` (after the warm start and the groups' selection).
+    void add(const ContactConstraint& c, std::uint32_t index, const SolverSettings& settings);
+    /// One sweep, as ContactSolver::solveVelocitySweep (which calls it) without the exactly
+    /// solved groups; returns the largest velocity change (m/s) when measuring.
+    Real sweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
+               std::span<NormalFactor> factors, const SolverSettings& settings, Real inverseH,
+               Real bias);
+    /// The normal impulses of the grouped manifolds, after the groups' solve.
+    void readGroupImpulses(std::span<const ContactConstraint> constraints);
+    /// Split impulse's relax sweeps aim at the rebound alone (see ConstraintSolver::relax).
+    void dropBounceCorrections();
+    /// The impulses back into the constraints after the last sweep.
+    void store(std::span<ContactConstraint> constraints) const;
+
+private:
+    std::vector<SweepManifold> manifolds_;
+    std::vector<SweepPoint> points_;
+    std::vector<Eigen::Matrix<Real, 4, 4>> blocks_;  ///< normal blocks (normal_block.h)
+    std::vector<std::uint32_t> grouped_;             ///< manifolds with grouped normal rows
+};
+
+}  // namespace tumble

@@ -1,0 +1,158 @@
+#include "tumble/solver/sweep_rows.h"
+
+#include <algorithm>
+
+#include "contact_kernels.h"
+#include "normal_block.h"
+#include "tumble/solver/contact_solver.h"
+
+namespace tumble {
+namespace {
+
+using Vec2 = Eigen::Matrix<Real, 2, 1>;
+
+// The friction rows of one manifold's points (contact_solver.h): coupled on the disc, or the
+// box model with its masses from the constraint. Returns the largest change when measuring.
+Real solveFriction(SolverBody& a, SolverBody& b, const SweepManifold& m, SweepPoint* points,
+                   const ContactConstraint& c, const SolverSettings& settings) {
+    const Real omega = settings.relaxation;
+    Real largestChange = 0;
+    for (int i = 0; i < m.pointCount; ++i) {
+        SweepPoint& p = points[i];
+        const Vec3 dv = b.linearVelocity - a.linearVelocity;
+        Vec2 vt;
+        for (int r = 0; r < 2; ++r) {
+            vt(r) = m.tangents[r].dot(dv) + p.tangentAngularB[r].dot(b.angularVelocity) -
+                    p.tangentAngularA[r].dot(a.angularVelocity);
+        }
+        const Vec2 old(p.tangentImpulse[0], p.tangentImpulse[1]);
+        const Real limit = m.friction * p.normalImpulse;
+        Vec2 next;
+        if (settings.friction == FrictionModel::Coupled) {
+            next = old + omega * (solveDisc(p.tangent, old, vt, limit) - old);
+        } else {
+            const std::array<Real, 2>& mass = c.points[i].tangentMass;
+            next = (old - omega * Vec2(mass[0] * vt(0), mass[1] * vt(1)))
+                       .cwiseMax(-limit)
+                       .cwiseMin(limit);
+        }
+        const Vec2 delta = next - old;
+        const Vec3 linear = delta.x() * m.tangents[0] + delta.y() * m.tangents[1];
+        a.linearVelocity -= a.inverseMass * linear;
+        a.angularVelocity -= delta.x() * p.tangentImpulseA[0] + delta.y() * p.tangentImpulseA[1];
+        b.linearVelocity += b.inverseMass * linear;
+        b.angularVelocity += delta.x() * p.tangentImpulseB[0] + delta.y() * p.tangentImpulseB[1];
+        p.tangentImpulse = {next.x(), next.y()};
+        if (settings.tolerance > 0)
+            largestChange = std::max(largestChange, (p.tangent.block * delta).norm());
+    }
+    return largestChange;
+}
+
+}  // namespace
+
+void SweepRows::clear() {
+    manifolds_.clear();
+    points_.clear();
+    blocks_.clear();
+    grouped_.clear();
+}
+
+void SweepRows::add(const ContactConstraint& c, std::uint32_t index,
+                    const SolverSettings& settings) {
+    SweepManifold& m = manifolds_.emplace_back();
+    m.bodyA = c.bodyA;
+    m.bodyB = c.bodyB;
+    m.constraint = index;
+    m.firstPoint = static_cast<std::uint32_t>(points_.size());
+    m.pointCount = static_cast<std::uint8_t>(c.pointCount);
+    m.angular = c.spinMass > 0 || c.rollingActive;
+    m.grouped = c.normalGroup != NormalIslands::kNone;
+    m.normal = c.normal;
+    m.tangents = c.tangents;
+    m.friction = c.friction;
+    if (m.grouped)
+        grouped_.push_back(static_cast<std::uint32_t>(manifolds_.size() - 1));
+    else if (c.pointCount > 1 || settings.tolerance > 0) {
+        m.block = static_cast<std::uint32_t>(blocks_.size());
+        blocks_.push_back(c.normalBlock);
+    }
+    for (int i = 0; i < c.pointCount; ++i) {
+        const ContactConstraintPoint& q = c.points[i];
+        SweepPoint& p = points_.emplace_back();
+        p.tangentAngularA = q.tangentAngularA;
+        p.tangentAngularB = q.tangentAngularB;
+        p.tangent = q.tangent;
+        p.tangentImpulse = q.tangentImpulse;
+        p.normalImpulse = q.normalImpulse;
+        p.normalMass = q.normalMass;
+        p.tangentImpulseA = q.tangentImpulseA;
+        p.tangentImpulseB = q.tangentImpulseB;
+        p.angularA = q.angularA;
+        p.angularB = q.angularB;
+        p.separation = q.separation;
+        p.reboundSpeed = q.reboundSpeed;
+        p.bounceCorrection = q.bounceCorrection;
+        p.angularImpulseA = q.angularImpulseA;
+        p.angularImpulseB = q.angularImpulseB;
+        p.bounces = q.bounces;
+    }
+}
+
+Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
+                      std::span<NormalFactor> factors, const SolverSettings& settings,
+                      Real inverseH, Real bias) {
+    Real largestChange = 0;
+    for (const SweepManifold& m : manifolds_) {
+        SolverBody& a = bodies[m.bodyA];
+        SolverBody& b = bodies[m.bodyB];
+        SweepPoint* points = points_.data() + m.firstPoint;
+        // Friction first, with the normal impulses of the last sweep: non-penetration, solved
+        // last, matters more.
+        if (m.friction > 0) {
+            largestChange = std::max(
+                largestChange, solveFriction(a, b, m, points, constraints[m.constraint], settings));
+        }
+        if (m.angular) {
+            // Rare: these rows read the constraint, which gets the current normal impulses.
+            ContactConstraint& c = constraints[m.constraint];
+            for (int i = 0; i < m.pointCount; ++i)
+                c.points[i].normalImpulse = points[i].normalImpulse;
+            largestChange =
+                std::max(largestChange, solveAngularFriction(a, b, c, settings.relaxation));
+        }
+        if (!m.grouped) {
+            const Mat4* block = m.block == SweepManifold::kNoBlock ? nullptr : &blocks_[m.block];
+            solveNormals(a, b, m.normal, block, points, m.pointCount, factors[m.constraint],
+                         settings, inverseH, bias, largestChange);
+        }
+    }
+    return largestChange;
+}
+
+void SweepRows::readGroupImpulses(std::span<const ContactConstraint> constraints) {
+    for (std::uint32_t index : grouped_) {
+        const SweepManifold& m = manifolds_[index];
+        const ContactConstraint& c = constraints[m.constraint];
+        for (int i = 0; i < m.pointCount; ++i)
+            points_[m.firstPoint + i].normalImpulse = c.points[i].normalImpulse;
+    }
+}
+
+void SweepRows::dropBounceCorrections() {
+    for (SweepPoint& p : points_)
+        p.bounceCorrection = 0;
+}
+
+void SweepRows::store(std::span<ContactConstraint> constraints) const {
+    for (const SweepManifold& m : manifolds_) {
+        ContactConstraint& c = constraints[m.constraint];
+        for (int i = 0; i < m.pointCount; ++i) {
+            const SweepPoint& p = points_[m.firstPoint + i];
+            c.points[i].normalImpulse = p.normalImpulse;
+            c.points[i].tangentImpulse = p.tangentImpulse;
+        }
+    }
+}
+
+}  // namespace tumble
