@@ -14,6 +14,11 @@ std::uint32_t endBody(const BodyStore& bodies, std::uint32_t index, bool world) 
     return !world && bodies.isAwake(index) ? solverBodyIndex(bodies, index) : 0u;
 }
 
+// A row between bodies a and b (b unused when `world`) moves something.
+bool eitherAwakeDynamic(const BodyStore& bodies, std::uint32_t a, std::uint32_t b, bool world) {
+    return bodies.isAwakeDynamic(a) || (!world && bodies.isAwakeDynamic(b));
+}
+
 // Capsule pose along the segment from a to b: its local z on the segment, centred on it.
 Transform segmentPose(const Vec3& a, const Vec3& b) {
     const Vec3 d = b - a;
@@ -33,15 +38,8 @@ std::span<SegmentContactRow> ThreadContacts::build(const SpringStore& springs,
     if (springs.contactCount == 0)
         return {};
     for (std::uint32_t i = 0; i < springs.count(); ++i) {
-        const SpringDef& def = springs.defs[i];
-        if (def.contactRadius <= 0)
-            continue;
-        const std::uint32_t a = bodies.indexOf(def.bodyA);
-        const bool world = def.bodyB.isNull();
-        const std::uint32_t b = world ? 0 : bodies.indexOf(def.bodyB);
-        if (!bodies.isAwakeDynamic(a) && (world || !bodies.isAwakeDynamic(b)))
-            continue;
-        collideThread(i, springs, bodies, shapes, contacts, context.h);
+        if (springs.defs[i].contactRadius > 0)
+            collideThread(i, springs, bodies, shapes, contacts, context.h);
     }
     return rows_;
 }
@@ -67,6 +65,8 @@ void ThreadContacts::collideThread(std::uint32_t index, const SpringStore& sprin
     const std::uint32_t a = bodies.indexOf(def.bodyA);
     const bool world = def.bodyB.isNull();
     const std::uint32_t b = world ? 0 : bodies.indexOf(def.bodyB);
+    if (!eitherAwakeDynamic(bodies, a, b, world))
+        return;  // nothing it could move
     const Vec3 pA = anchorAt(bodies, a, def.localAnchorA);
     const Vec3 pB = world ? def.localAnchorB : anchorAt(bodies, b, def.localAnchorB);
     const Real speed = std::max(bodies.motion[a].linearVelocity.norm(),

@@ -45,7 +45,8 @@ private:
     /// Static and kinematic shapes whose tight box meets `box`, in slot order, into shapes_.
     void candidates(const Aabb& box, const BodyStore& bodies, const ShapeStore& shapes,
                     const ContactManager& contacts);
-    /// The rows of spring `index` against shapes_, appended to rows_.
+    /// The rows of spring `index` (with an awake dynamic end) against the shapes it meets,
+    /// appended to rows_.
     void collideThread(std::uint32_t index, const SpringStore& springs, const BodyStore& bodies,
                        const ShapeStore& shapes, const ContactManager& contacts, Real h);
 
