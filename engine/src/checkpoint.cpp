@@ -192,7 +192,8 @@ void field(Ar& a, JointStepState& x) {
 template <typename Ar>
 void field(Ar& a, SpringDef& x) {
     fields(a, x.bodyA, x.bodyB, x.localAnchorA, x.localAnchorB, x.restLength, x.stiffness,
-           x.damping, x.tensionOnly, x.formulation, x.numericalDamping);
+           x.damping, x.tensionOnly, x.formulation, x.numericalDamping, x.contactRadius,
+           x.contactFriction);
 }
 template <typename Ar>
 void field(Ar& a, SpringStepState& x) {
@@ -348,7 +349,7 @@ struct CheckpointAccess {
         });
         fields(a, anchors.solve_);
         SpringStore& s = w.springs;
-        fields(a, s.defs, s.state, s.previousState, s.implicitCount);
+        fields(a, s.defs, s.state, s.previousState, s.implicitCount, s.contactCount);
         io(a, s.pool_);
         JointStore& j = w.joints;
         fields(a, j.records, j.state, j.previousState);

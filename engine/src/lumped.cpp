@@ -62,7 +62,7 @@ BodyId addNode(World& world, const NodeDef& node, Real mass, const Vec3& positio
     return id;
 }
 
-SpringId addThread(World& world, const ThreadDef& thread, BodyId a, BodyId b,
+SpringId addThread(World& world, const ThreadDef& thread, const NodeDef& node, BodyId a, BodyId b,
                    const Vec3& worldAnchor, Real restLength) {
     SpringDef spring;
     spring.bodyA = a;
@@ -75,6 +75,10 @@ SpringId addThread(World& world, const ThreadDef& thread, BodyId a, BodyId b,
     spring.tensionOnly = thread.tensionOnly;
     spring.formulation = thread.formulation;
     spring.numericalDamping = thread.numericalDamping;
+    if (thread.collide) {
+        spring.contactRadius = node.radius;
+        spring.contactFriction = node.material.friction;
+    }
     return world.createSpring(spring);
 }
 
@@ -107,16 +111,16 @@ Lumped createString(World& world, const StringDef& def) {
             addNode(world, def.node, def.node.mass, def.start + (first + j) * step, def.velocity));
     }
     if (def.fixedStart) {
-        out.threads.push_back(
-            addThread(world, def.thread, out.nodes.front(), BodyId{}, def.start, restLength));
+        out.threads.push_back(addThread(world, def.thread, def.node, out.nodes.front(), BodyId{},
+                                        def.start, restLength));
     }
     for (int j = 0; j + 1 < def.count; ++j) {
-        out.threads.push_back(
-            addThread(world, def.thread, out.nodes[j], out.nodes[j + 1], Vec3::Zero(), restLength));
+        out.threads.push_back(addThread(world, def.thread, def.node, out.nodes[j], out.nodes[j + 1],
+                                        Vec3::Zero(), restLength));
     }
     if (def.fixedEnd) {
-        out.threads.push_back(
-            addThread(world, def.thread, out.nodes.back(), BodyId{}, def.end, restLength));
+        out.threads.push_back(addThread(world, def.thread, def.node, out.nodes.back(), BodyId{},
+                                        def.end, restLength));
     }
     return out;
 }
@@ -164,12 +168,12 @@ Lumped createNet(World& world, const NetDef& def) {
     for (int i = 0; i < n; ++i) {
         for (int j = 0; j < m; ++j) {
             if (j + 1 < m) {
-                out.threads.push_back(addThread(world, def.thread, node(i, j), node(i, j + 1),
-                                                Vec3::Zero(), def.meshSize));
+                out.threads.push_back(addThread(world, def.thread, def.node, node(i, j),
+                                                node(i, j + 1), Vec3::Zero(), def.meshSize));
             }
             if (i + 1 < n) {
-                out.threads.push_back(addThread(world, def.thread, node(i, j), node(i + 1, j),
-                                                Vec3::Zero(), def.meshSize));
+                out.threads.push_back(addThread(world, def.thread, def.node, node(i, j),
+                                                node(i + 1, j), Vec3::Zero(), def.meshSize));
             }
         }
     }

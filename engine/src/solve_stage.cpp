@@ -32,11 +32,6 @@ Vec3 velocityChangeAt(const BodyStore& bodies, std::uint32_t index, const Vec3& 
            (now.angularVelocity - start.angularVelocity).cross(r);
 }
 
-// Solver body 0 is every static body; awake body k is solver body 1 + k.
-std::uint32_t solverIndex(const BodyStore& bodies, std::uint32_t index) {
-    return bodies.info[index].type == BodyType::Static ? 0 : 1 + bodies.info[index].awakeIndex;
-}
-
 }  // namespace
 
 std::span<const PseudoVelocity> SolveStage::pseudoVelocities() const {
@@ -69,8 +64,8 @@ std::span<ContactConstraint> SolveStage::buildConstraints(const BodyStore& bodie
         if (count == constraints_.size())
             constraints_.emplace_back();
         ContactConstraint& c = constraints_[count++];
-        c.bodyA = solverIndex(bodies, indexA);
-        c.bodyB = solverIndex(bodies, indexB);
+        c.bodyA = solverBodyIndex(bodies, indexA);
+        c.bodyB = solverBodyIndex(bodies, indexB);
         c.normal = contact.manifold.normal;
         c.friction = mixFriction(materialA.friction, materialB.friction);
         c.restitution = mixRestitution(materialA.restitution, materialB.restitution);
@@ -128,14 +123,17 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
     buildSpringRows(
         springs, bodies, context.h,
         [&](std::uint32_t index) {
-            return bodies.isAwake(index) ? solverIndex(bodies, index) : 0u;
+            return bodies.isAwake(index) ? solverBodyIndex(bodies, index) : 0u;
         },
         springRows_, rowSpring_, rowBodies_);
 
     buildJointRows(joints, bodies, context.h, jointRows_, rowJoint_);
 
+    const std::span<SegmentContactRow> threadRows =
+        threadContacts_.build(springs, bodies, shapes, contacts, context);
+
     const SolverStats stats = solver_.solve(solverBodies_, constraints, pseudo_, context.h,
-                                            settings, springRows_, jointRows_);
+                                            settings, springRows_, jointRows_, threadRows);
     const bool anchored =
         settings.frictionAnchors && settings.stabilisation == Stabilisation::SplitImpulse;
     if (anchored)

@@ -18,6 +18,7 @@
 #include "spring_store.h"
 #include "springs.h"
 #include "step_context.h"
+#include "thread_contacts.h"
 #include "tumble/contact.h"
 #include "tumble/solver/constraint_solver.h"
 #include "tumble/solver/friction_anchors.h"
@@ -95,6 +96,7 @@ private:
     std::vector<Real> projectionError_;  ///< of each projected row (m)
     std::vector<SolverBody> projectedBodies_;
     std::vector<PseudoVelocity> corrections_;
+    ThreadContacts threadContacts_;  ///< rows of the threads touching shapes
     std::vector<JointRow> jointRows_;
     std::vector<std::uint32_t> rowJoint_;  ///< joint index of each row
     std::vector<std::uint32_t> brokenJoints_;
@@ -103,6 +105,11 @@ private:
     std::vector<Vec3> anchorDrifts_;  ///< 4 per constraint
     std::vector<char> sprung_;        ///< by solver body: a spring ends on it
 };
+
+/// Solver body 0 is every static body; awake body k is solver body 1 + k.
+inline std::uint32_t solverBodyIndex(const BodyStore& bodies, std::uint32_t index) {
+    return bodies.info[index].type == BodyType::Static ? 0 : 1 + bodies.info[index].awakeIndex;
+}
 
 /// Mixing rules for a pair of materials: friction by geometric mean (a frictionless surface
 /// makes any pair frictionless), restitution by the maximum (a bouncy ball bounces on anything).

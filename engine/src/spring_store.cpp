@@ -12,12 +12,16 @@ SpringId SpringStore::add(const SpringDef& def) {
     previousState.push_back({});
     if (def.formulation != SpringFormulation::Explicit)
         implicitCount += 1;
+    if (def.contactRadius > 0)
+        contactCount += 1;
     return id;
 }
 
 void SpringStore::remove(SpringId id) {
     if (defs[indexOf(id)].formulation != SpringFormulation::Explicit)
         implicitCount -= 1;
+    if (defs[indexOf(id)].contactRadius > 0)
+        contactCount -= 1;
     moveLastInto(pool_.remove(id), defs, state, previousState);
 }
 

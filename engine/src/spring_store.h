@@ -45,6 +45,7 @@ public:
     std::vector<SpringStepState> state;
     std::vector<SpringStepState> previousState;
     std::uint32_t implicitCount = 0;  ///< how many are solver rows (not Explicit)
+    std::uint32_t contactCount = 0;   ///< how many touch shapes (contactRadius > 0)
 };
 
 /// Drag of the bodies that have any, in the order drag was first set.

@@ -48,6 +48,10 @@ void checkSpringDef(const SpringDef& def, const BodyStore& bodies) {
     }
     if (!(def.numericalDamping >= 0 && def.numericalDamping <= 1))
         fail("SpringDef.numericalDamping = ", def.numericalDamping, " must be in [0, 1]");
+    if (!(std::isfinite(def.contactRadius) && def.contactRadius >= 0))
+        fail("SpringDef.contactRadius = ", def.contactRadius, " (m) must be finite and >= 0");
+    if (!(std::isfinite(def.contactFriction) && def.contactFriction >= 0))
+        fail("SpringDef.contactFriction = ", def.contactFriction, " must be finite and >= 0");
 }
 
 // An explicit spring's step is stable only for omega h < 2 (omega^2 = k (1/m_A + 1/m_B), undamped;

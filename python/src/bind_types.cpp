@@ -145,7 +145,10 @@ void bindDefinitions(py::module_& m) {
         .field("stiffness", &SpringDef::stiffness, "k (N/m), >= 0")
         .field("damping", &SpringDef::damping, "c (N s/m), >= 0")
         .field("tension_only", &SpringDef::tensionOnly, "a thread: never pushes")
-        .field("formulation", &SpringDef::formulation, "SpringFormulation");
+        .field("formulation", &SpringDef::formulation, "SpringFormulation")
+        .field("contact_radius", &SpringDef::contactRadius,
+               "(m), >= 0; > 0: the segment touches static shapes as a capsule")
+        .field("contact_friction", &SpringDef::contactFriction, "mu of the segment, >= 0");
     Struct<Drag>(m, "Drag", "Drag on the centre of mass: -(linear + quadratic |u|) u, u = P v.")
         .field("linear", &Drag::linear, "b1 (N s/m), >= 0")
         .field("quadratic", &Drag::quadratic, "b2 (N s^2/m^2), >= 0")
@@ -205,7 +208,8 @@ void bindLumpedTypes(py::module_& m) {
         .field("axial_rigidity", &ThreadDef::axialRigidity, "E A (N), > 0")
         .field("damping", &ThreadDef::damping, "(N s/m), >= 0")
         .field("tension_only", &ThreadDef::tensionOnly, "")
-        .field("formulation", &ThreadDef::formulation, "SpringFormulation");
+        .field("formulation", &ThreadDef::formulation, "SpringFormulation")
+        .field("collide", &ThreadDef::collide, "segments touch static shapes");
     Struct<NodeDef>(m, "NodeDef", "Nodes of a string or net.")
         .field("mass", &NodeDef::mass, "(kg), > 0")
         .field("radius", &NodeDef::radius, "(m), > 0")

@@ -43,6 +43,7 @@ ThreadDef parseThread(JsonObject o) {
     thread.tensionOnly = o.boolean("tensionOnly", thread.tensionOnly);
     thread.formulation = parseFormulation(o, thread.formulation);
     thread.numericalDamping = parseNumericalDamping(o, thread.numericalDamping);
+    thread.collide = o.boolean("collide", thread.collide);
     o.finish();
     return thread;
 }

@@ -10,7 +10,9 @@ SolverStats ConstraintSolver::solve(std::span<SolverBody> bodies,
                                     std::span<ContactConstraint> constraints,
                                     std::vector<PseudoVelocity>& pseudo, Real h,
                                     const SolverSettings& settings, std::span<SpringRow> springs,
-                                    std::span<JointRow> joints) {
+                                    std::span<JointRow> joints,
+                                    std::span<SegmentContactRow> segments) {
+    segments_ = segments;
     const Real inverseH = 1 / h;
     const bool split = settings.stabilisation == Stabilisation::SplitImpulse;
     const Real bias = split ? settings.splitImpulseFactor : settings.baumgarte;
@@ -50,6 +52,7 @@ Real ConstraintSolver::prepare(std::span<SolverBody> bodies,
     if (settings.jointGeometricStiffness && !joints.empty())
         applyJointGeometricStiffness(bodies, joints, h, geometricStiffness_);
     contacts_.prepare(bodies, constraints, h, settings);
+    prepareSegmentContacts(bodies, segments_, settings.warmStart);
     prepareSpringRows(bodies, springs, h, settings.warmStart);
     directSprings_ = settings.springSolve == SpringSolve::Direct && !springs.empty();
     if (directSprings_)
@@ -123,7 +126,7 @@ int ConstraintSolver::runSweeps(std::span<SolverBody> bodies,
         Real springChange = 0;
         if (!directSprings_ || !springBlock_.ready())
             springChange = solveSpringRows(bodies, springs, settings.relaxation);
-        else if (sweep == 0 || !constraints.empty())
+        else if (sweep == 0 || !constraints.empty() || !segments_.empty())
             springChange = springBlock_.solve(bodies, springs);
         if (directJoints_) {
             updateJointBlockTargets(bodies, joints_, jointBlockRows_, jointBias_, inverseH);
@@ -131,9 +134,10 @@ int ConstraintSolver::runSweeps(std::span<SolverBody> bodies,
         }
         springChange = std::max(springChange, solveJointRows(bodies, joints_, settings.relaxation,
                                                              jointBias_, inverseH));
-        const Real largestChange =
-            std::max(springChange,
-                     contacts_.solveVelocitySweep(bodies, constraints, settings, inverseH, bias));
+        const Real contactChange =
+            std::max(contacts_.solveVelocitySweep(bodies, constraints, settings, inverseH, bias),
+                     solveSegmentContacts(bodies, segments_, inverseH, bias, settings.slop));
+        const Real largestChange = std::max(springChange, contactChange);
         ++sweep;
         if (settings.tolerance > 0 && largestChange <= settings.tolerance)
             return sweep;
@@ -142,7 +146,7 @@ int ConstraintSolver::runSweeps(std::span<SolverBody> bodies,
     // otherwise act on stale velocities -- partly explicit at omega_e h >> 2 -- and a net
     // resting across gaps in a pile was pumped into a 0.1-0.2 m/s vibration that never let it
     // sleep at 10 sweeps (20 converge). The factorisation is reused: one more solve.
-    if (directSprings_ && springBlock_.ready() && !constraints.empty())
+    if (directSprings_ && springBlock_.ready() && (!constraints.empty() || !segments_.empty()))
         springBlock_.solve(bodies, springs);
     return sweeps;
 }

@@ -86,6 +86,30 @@ TEST(Scenes, NetCaptureWrapsTheDustbinAndRecordsItsCorners) {
     EXPECT_GE(count(svg, "<circle"), 4u * 400u);
 }
 
+TEST(Scenes, DustbinMeshCatchesTheNetOnItsRim) {
+    // net-capture's net thrown onto an open bin of triangles (radius 0.3 m, 0.8 m tall, thin
+    // walls, no lid). Its threads collide (thread.collide): threads caught on the rim between
+    // nodes hold the net across the opening -- the middle stays up at the rim, not on the bin's
+    // floor or the ground -- and the heavy corners are drawn in as around net-capture's solid
+    // bin (< 0.75 m from the axis, on the ground). Without thread contacts the net slid past the
+    // rim: corners 1.27 m out, the middle on the ground.
+    const fs::path dir = scratch("dustbin_mesh");
+    const fs::path csv = dir / "corners.csv";
+    const Outcome o = tumbleRun({"run", "dustbin-mesh", "--time", "1.5", "--quiet", "--record",
+                                 csv.string(), "--record-bodies", "net.corners,net[10][10]"});
+    ASSERT_EQ(o.status, 0) << o.err;
+    const auto paths = readTrajectories(csv);
+    ASSERT_EQ(paths.size(), 5u);
+    for (const char* corner : {"net[0][0]", "net[0][19]", "net[19][0]", "net[19][19]"}) {
+        const Sample end = paths.at(corner).back();
+        EXPECT_LT(end.z, 0.02) << corner << " is on the ground (node radius 0.01 m)";
+        EXPECT_LT(std::hypot(end.x, end.y), 0.75) << corner << " drawn in to the bin";
+    }
+    const Sample middle = paths.at("net[10][10]").back();
+    EXPECT_LT(std::hypot(middle.x, middle.y), 0.3) << "the middle is over the opening";
+    EXPECT_GT(middle.z, 0.5) << "held by the rim";
+}
+
 TEST(Scenes, StringStrikeReachesTheFreeEndAfterTheWaveTravelTime) {
     // A hanging string carries tension rho g s at height s above its free end, so a transverse
     // wave travels at sqrt(g s) and takes 2 sqrt(s / g) to come down from height s. The 15th of

@@ -25,6 +25,10 @@ struct ThreadDef {
     bool tensionOnly = true;   ///< threads pull, never push
     SpringFormulation formulation = SpringFormulation::Implicit;
     Real numericalDamping = 0;  ///< in [0, 1], see SpringDef::numericalDamping
+    /// Each segment touches static and kinematic shapes as a capsule of the node radius, with
+    /// the node material's friction (SpringDef::contactRadius): a net caught on a thin rim
+    /// between its nodes hangs on it. Off: only colliding nodes touch anything.
+    bool collide = false;
 };
 
 /// The nodes of a string or net.

@@ -58,6 +58,13 @@ struct SpringDef {
     /// (first order: measured 5e-4 of the energy per step at omega h = 0.1, d = 0.1); 1 is
     /// implicit Euler. Physical damping is `damping` alone.
     Real numericalDamping = 0;
+    /// (m), finite and >= 0: when > 0 the segment between the anchors touches the shapes of
+    /// static and kinematic bodies as a capsule of this radius -- a thread of a net caught on a
+    /// rim between its nodes (engine/src/thread_contacts.h). 0 (default): it passes through.
+    Real contactRadius = 0;
+    /// Coulomb mu of the segment, finite and >= 0; mixed with the shape's friction as two
+    /// shapes' (geometric mean). Used only when contactRadius > 0.
+    Real contactFriction = 0.5;
 };
 
 /// k = E A / L0 (N/m) of a uniform elastic bar or thread. Refuses (InvalidArgument) E, A or L0

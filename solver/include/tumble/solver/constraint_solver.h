@@ -21,6 +21,7 @@
 #include "tumble/core/solver_types.h"
 #include "tumble/solver/contact_solver.h"
 #include "tumble/solver/joint_row.h"
+#include "tumble/solver/segment_contact_row.h"
 #include "tumble/solver/solver_body.h"
 #include "tumble/solver/spring_block.h"
 #include "tumble/solver/spring_row.h"
@@ -37,9 +38,12 @@ public:
     /// relax sweep alike (they are forces, not stabilisation); their impulses are written back.
     /// Joint rows (joint_row.h), when given, are solved after the springs and before the
     /// contacts in every sweep, with the same bias as the contacts; impulses written back.
+    /// Segment contact rows (segment_contact_row.h), when given, are solved after the contacts
+    /// in every sweep, as contacts; impulses written back.
     SolverStats solve(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                       std::vector<PseudoVelocity>& pseudo, Real h, const SolverSettings& settings,
-                      std::span<SpringRow> springs = {}, std::span<JointRow> joints = {});
+                      std::span<SpringRow> springs = {}, std::span<JointRow> joints = {},
+                      std::span<SegmentContactRow> segments = {});
     /// Time of each stage of the last solve.
     const SolverProfile& profile() const { return profile_; }
 
@@ -63,11 +67,12 @@ private:
     ContactSolver contacts_;
     SolverProfile profile_;
     SpringBlockSolver springBlock_;
-    bool directSprings_ = false;            ///< this step's springs go through springBlock_
-    std::span<JointRow> joints_;            ///< of the solve in progress
-    Real jointBias_ = 0;                    ///< their bias in the velocity sweeps (Baumgarte only)
-    std::vector<Mat3> geometricStiffness_;  ///< scratch of applyJointGeometricStiffness
-    SpringBlockSolver jointBlock_;          ///< ball joints' point rows (jointSolve Direct)
+    bool directSprings_ = false;             ///< this step's springs go through springBlock_
+    std::span<JointRow> joints_;             ///< of the solve in progress
+    std::span<SegmentContactRow> segments_;  ///< of the solve in progress
+    Real jointBias_ = 0;                     ///< their bias in the velocity sweeps (Baumgarte only)
+    std::vector<Mat3> geometricStiffness_;   ///< scratch of applyJointGeometricStiffness
+    SpringBlockSolver jointBlock_;           ///< ball joints' point rows (jointSolve Direct)
     std::vector<SpringRow> jointBlockRows_;
     bool directJoints_ = false;             ///< this step's ball joints go through jointBlock_
     std::vector<SolverBody> pseudoBodies_;  ///< the joints' position pass works on these

@@ -1,0 +1,124 @@
+#include "thread_contacts.h"
+
+#include <algorithm>
+
+#include "solve_stage.h"
+#include "springs.h"
+#include "tumble/collision/narrowphase.h"
+
+namespace tumble {
+namespace {
+
+// Solver body of a spring end: the awake body's own, else the one every static body shares.
+std::uint32_t endBody(const BodyStore& bodies, std::uint32_t index, bool world) {
+    return !world && bodies.isAwake(index) ? solverBodyIndex(bodies, index) : 0u;
+}
+
+// A row between bodies a and b (b unused when `world`) moves something.
+bool eitherAwakeDynamic(const BodyStore& bodies, std::uint32_t a, std::uint32_t b, bool world) {
+    return bodies.isAwakeDynamic(a) || (!world && bodies.isAwakeDynamic(b));
+}
+
+// Capsule pose along the segment from a to b: its local z on the segment, centred on it.
+Transform segmentPose(const Vec3& a, const Vec3& b) {
+    const Vec3 d = b - a;
+    const Quat turn =
+        d.squaredNorm() > 0 ? Quat::FromTwoVectors(Vec3::UnitZ(), d) : Quat::Identity();
+    return Transform{Vec3((a + b) / 2), turn.normalized()};
+}
+
+}  // namespace
+
+std::span<SegmentContactRow> ThreadContacts::build(const SpringStore& springs,
+                                                   const BodyStore& bodies,
+                                                   const ShapeStore& shapes,
+                                                   const ContactManager& contacts,
+                                                   const StepContext& context) {
+    rows_.clear();
+    if (springs.contactCount == 0)
+        return {};
+    for (std::uint32_t i = 0; i < springs.count(); ++i) {
+        if (springs.defs[i].contactRadius > 0)
+            collideThread(i, springs, bodies, shapes, contacts, context.h);
+    }
+    return rows_;
+}
+
+void ThreadContacts::candidates(const Aabb& box, const BodyStore& bodies, const ShapeStore& shapes,
+                                const ContactManager& contacts) {
+    shapes_.clear();
+    contacts.broadphase().query(box, [&](std::uint32_t proxy) {
+        const std::uint32_t slot = contacts.shapeOfProxy(proxy);
+        const ShapeRecord& shape = shapes.records[slot];
+        if (bodies.info[bodies.indexOf(shape.body)].type != BodyType::Dynamic &&
+            shape.bounds.overlaps(box))
+            shapes_.push_back(slot);
+    });
+    // The broadphase's visiting order follows its cells; the rows' order must not.
+    std::sort(shapes_.begin(), shapes_.end());
+}
+
+void ThreadContacts::collideThread(std::uint32_t index, const SpringStore& springs,
+                                   const BodyStore& bodies, const ShapeStore& shapes,
+                                   const ContactManager& contacts, Real h) {
+    const SpringDef& def = springs.defs[index];
+    const std::uint32_t a = bodies.indexOf(def.bodyA);
+    const bool world = def.bodyB.isNull();
+    const std::uint32_t b = world ? 0 : bodies.indexOf(def.bodyB);
+    if (!eitherAwakeDynamic(bodies, a, b, world))
+        return;  // nothing it could move
+    const Vec3 pA = anchorAt(bodies, a, def.localAnchorA);
+    const Vec3 pB = world ? def.localAnchorB : anchorAt(bodies, b, def.localAnchorB);
+    const Real speed = std::max(bodies.motion[a].linearVelocity.norm(),
+                                world ? 0 : bodies.motion[b].linearVelocity.norm());
+    const Real margin = contacts.contactMargin + h * speed;
+    const Vec3 grow = Vec3::Constant(def.contactRadius + margin);
+    candidates(Aabb{Vec3(pA.cwiseMin(pB) - grow), Vec3(pA.cwiseMax(pB) + grow)}, bodies, shapes,
+               contacts);
+    if (shapes_.empty())
+        return;
+    const Vec3 d = pB - pA;
+    const Real length = d.norm();
+    if (!(length > 0))
+        return;  // the nodes' own contacts, if any, are all there is
+    // A node with shapes of its own touches with them what lies within the radius of its
+    // centre: the capsule starts a radius further along. Dropping the capsule's points near
+    // such a node instead either kept the cap's points, duplicating the node's (t off 0 by the
+    // tilt), or, by distance, dropped a 5 cm wall's near edge under a node hanging beside it,
+    // and the thread sank through.
+    const Real trimA = bodies.info[a].firstShape != BodyInfo::kNoShape ? def.contactRadius : 0;
+    const Real trimB =
+        !world && bodies.info[b].firstShape != BodyInfo::kNoShape ? def.contactRadius : 0;
+    const Real core = length - trimA - trimB;
+    if (!(core > 0))
+        return;
+    const Vec3 axis = d / length;
+    const Shape capsule = Capsule{def.contactRadius, core / 2};
+    const Transform pose = segmentPose(pA + trimA * axis, pB - trimB * axis);
+    for (const std::uint32_t slot : shapes_) {
+        const ShapeRecord& shape = shapes.records[slot];
+        collide(capsule, pose, shape.def.geometry, shapePose(shape, bodies), margin, manifolds_);
+        const std::uint32_t s = bodies.indexOf(shape.body);
+        for (int m = 0; m < manifolds_.count; ++m) {
+            const Manifold& manifold = manifolds_.manifolds[m];
+            for (int k = 0; k < manifold.pointCount; ++k) {
+                const ContactPoint& point = manifold.points[k];
+                const Real t =
+                    std::clamp((point.position - pA).dot(d) / (length * length), Real(0), Real(1));
+                SegmentContactRow& row = rows_.emplace_back();
+                row.bodyA = endBody(bodies, a, false);
+                row.bodyB = endBody(bodies, b, world);
+                row.bodyS = endBody(bodies, s, false);
+                row.t = t;
+                row.rA = pA - bodies.motion[a].center;
+                row.rB = world ? Vec3::Zero() : Vec3(pB - bodies.motion[b].center);
+                row.rS = point.position - bodies.motion[s].center;
+                row.normal = -manifold.normal;  // the manifold's runs from the capsule to S
+                row.separation = point.separation;
+                row.friction = mixFriction(def.contactFriction, shape.def.material.friction);
+            }
+        }
+    }
+}
+
+}  // namespace tumble

@@ -1,0 +1,100 @@
+#include "tumble/solver/segment_contact_row.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "tumble/solver/contact_solver.h"
+
+namespace tumble {
+namespace {
+
+// Velocity of the segment's point relative to S's (m/s).
+Vec3 relativeVelocity(std::span<const SolverBody> bodies, const SegmentContactRow& row) {
+    return (1 - row.t) * bodies[row.bodyA].velocityAt(row.rA) +
+           row.t * bodies[row.bodyB].velocityAt(row.rB) - bodies[row.bodyS].velocityAt(row.rS);
+}
+
+// Velocity change along d of a body's point at r per unit impulse there along d (1/kg).
+Real compliance(const SolverBody& body, const Vec3& r, const Vec3& d) {
+    const Vec3 arm = r.cross(d);
+    return body.inverseMass + arm.dot(body.inverseInertia * arm);
+}
+
+// K of the row along unit d: wA^2 kA + wB^2 kB + kS; its inverse, 0 if nothing can move.
+Real rowMass(std::span<const SolverBody> bodies, const SegmentContactRow& row, const Vec3& d) {
+    const Real k = (1 - row.t) * (1 - row.t) * compliance(bodies[row.bodyA], row.rA, d) +
+                   row.t * row.t * compliance(bodies[row.bodyB], row.rB, d) +
+                   compliance(bodies[row.bodyS], row.rS, d);
+    return k > 0 ? 1 / k : 0;
+}
+
+// The impulse p (N s) on the segment's point, split between its nodes; -p on S.
+void applySegmentImpulse(std::span<SolverBody> bodies, const SegmentContactRow& row,
+                         const Vec3& p) {
+    applyImpulse(bodies[row.bodyA], (1 - row.t) * p, row.rA);
+    applyImpulse(bodies[row.bodyB], row.t * p, row.rB);
+    applyImpulse(bodies[row.bodyS], -p, row.rS);
+}
+
+}  // namespace
+
+void prepareSegmentContacts(std::span<SolverBody> bodies, std::span<SegmentContactRow> rows,
+                            bool warmStart) {
+    for (SegmentContactRow& row : rows) {
+        row.tangents = frictionBasis(row.normal);
+        row.normalMass = rowMass(bodies, row, row.normal);
+        row.tangentMass = {rowMass(bodies, row, row.tangents[0]),
+                           rowMass(bodies, row, row.tangents[1])};
+        if (!warmStart) {
+            row.normalImpulse = 0;
+            row.tangentImpulse = {0, 0};
+            continue;
+        }
+        applySegmentImpulse(bodies, row,
+                            row.normalImpulse * row.normal +
+                                row.tangentImpulse[0] * row.tangents[0] +
+                                row.tangentImpulse[1] * row.tangents[1]);
+    }
+}
+
+Real solveSegmentContacts(std::span<SolverBody> bodies, std::span<SegmentContactRow> rows,
+                          Real inverseH, Real bias, Real slop) {
+    Real largestChange = 0;
+    for (SegmentContactRow& row : rows) {
+        // The normal first, so friction is clamped by this sweep's support.
+        const Real push =
+            row.separation > 0 ? 0 : bias * inverseH * std::max<Real>(0, -row.separation - slop);
+        const Real target = row.separation > 0 ? -row.separation * inverseH : push;
+        const Real speed = relativeVelocity(bodies, row).dot(row.normal);
+        const Real old = row.normalImpulse;
+        row.normalImpulse = std::max<Real>(0, old - row.normalMass * (speed - target));
+        applySegmentImpulse(bodies, row, (row.normalImpulse - old) * row.normal);
+        if (row.normalMass > 0)
+            largestChange =
+                std::max(largestChange, std::abs(row.normalImpulse - old) / row.normalMass);
+        if (row.friction == 0)
+            continue;
+        const Vec3 slip = relativeVelocity(bodies, row);
+        std::array<Real, 2> next{};
+        for (int k = 0; k < 2; ++k)
+            next[k] = row.tangentImpulse[k] - row.tangentMass[k] * slip.dot(row.tangents[k]);
+        const Real limit = row.friction * row.normalImpulse;
+        const Real size = std::hypot(next[0], next[1]);
+        if (size > limit) {
+            const Real scale = size > 0 ? limit / size : 0;
+            next = {next[0] * scale, next[1] * scale};
+        }
+        applySegmentImpulse(bodies, row,
+                            (next[0] - row.tangentImpulse[0]) * row.tangents[0] +
+                                (next[1] - row.tangentImpulse[1]) * row.tangents[1]);
+        for (int k = 0; k < 2; ++k) {
+            if (row.tangentMass[k] > 0)
+                largestChange = std::max(
+                    largestChange, std::abs(next[k] - row.tangentImpulse[k]) / row.tangentMass[k]);
+        }
+        row.tangentImpulse = next;
+    }
+    return largestChange;
+}
+
+}  // namespace tumble
