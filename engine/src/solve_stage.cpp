@@ -147,7 +147,9 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
     for (std::size_t j = 0; j < springRows_.size(); ++j) {
         const SpringRow& row = springRows_[j];
         const Real tension = -(row.impulse + row.knownImpulse) * context.inverseH;
-        springs.state[rowSpring_[j]] = {tension, row.tensionOnly && !(tension > 0)};
+        springs.state[rowSpring_[j]] = {
+            tension, row.tensionOnly && !(tension > 0),
+            row.discreteGradient ? Vec3(row.impulse * row.direction) : Vec3::Zero()};
     }
 
     for (std::size_t j = 0; j < constraints.size(); ++j) {
@@ -215,6 +217,7 @@ Real SolveStage::projectionErrors(const BodyStore& bodies, const SpringStore& sp
         row.rB = ends.world ? Vec3::Zero() : Vec3(pB - bodies.motion[ends.b].center);
         row.impulse = 0;
         row.spectralRadius = 0;  // a position correction: the element's whole stiffness
+        row.discreteGradient = false;
         const bool taut = !solved.tensionOnly || solved.impulse < 0;
         // A taut element: what the step's linearisation believed its length to be, against
         // the true one. A slack thread: whatever stretched it past its rest length without a
@@ -227,6 +230,9 @@ Real SolveStage::projectionErrors(const BodyStore& bodies, const SpringStore& sp
         // (spring_row.h); correcting them made the net-10 sweep's error 2-3x larger at h =
         // 1/240 ... 1/2000.
         if (solved.spectralRadius > 0 && !springRowUnresolved(solved, context.h))
+            error = 0;
+        // A discrete-gradient thread's row is linearised at its end-of-step span already.
+        if (solved.discreteGradient && taut)
             error = 0;
         projectionError_[j] = error;
         worst = std::max(worst, error);
