@@ -146,7 +146,11 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
 
     for (std::size_t j = 0; j < springRows_.size(); ++j) {
         const SpringRow& row = springRows_[j];
-        const Real tension = -(row.impulse + row.knownImpulse) * context.inverseH;
+        // A discrete-gradient thread's tension is its new half's force (spring_row.h): the
+        // step's impulse also holds last step's half, absent in a thread's first step.
+        const Real tension = row.discreteGradient
+                                 ? -2 * row.impulse * context.inverseH
+                                 : -(row.impulse + row.knownImpulse) * context.inverseH;
         springs.state[rowSpring_[j]] = {
             tension, row.tensionOnly && !(tension > 0),
             row.discreteGradient ? Vec3(row.impulse * row.direction) : Vec3::Zero()};
