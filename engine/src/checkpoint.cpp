@@ -197,7 +197,7 @@ void field(Ar& a, SpringDef& x) {
 }
 template <typename Ar>
 void field(Ar& a, SpringStepState& x) {
-    fields(a, x.tension, x.slack);
+    fields(a, x.tension, x.slack, x.carried);
 }
 template <typename Ar>
 void field(Ar& a, Drag& x) {

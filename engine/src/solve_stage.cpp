@@ -144,8 +144,14 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
 
     for (std::size_t j = 0; j < springRows_.size(); ++j) {
         const SpringRow& row = springRows_[j];
-        const Real tension = -(row.impulse + row.knownImpulse) * context.inverseH;
-        springs.state[rowSpring_[j]] = {tension, row.tensionOnly && !(tension > 0)};
+        // A discrete-gradient thread's tension is its new half's force (spring_row.h): the
+        // step's impulse also holds last step's half, absent in a thread's first step.
+        const Real tension = row.discreteGradient
+                                 ? -2 * row.impulse * context.inverseH
+                                 : -(row.impulse + row.knownImpulse) * context.inverseH;
+        springs.state[rowSpring_[j]] = {
+            tension, row.tensionOnly && !(tension > 0),
+            row.discreteGradient ? Vec3(row.impulse * row.direction) : Vec3::Zero()};
     }
 
     for (std::size_t j = 0; j < constraints.size(); ++j) {
@@ -242,6 +248,9 @@ Real SolveStage::projectionErrors(const BodyStore& bodies, const SpringStore& sp
         // 1/240 ... 1/2000.
         if (solved.spectralRadius > 0 && !springRowUnresolved(solved, context.h))
             error = 0;
+        // A discrete-gradient thread's row is linearised at its end-of-step span already.
+        if (solved.discreteGradient && taut)
+            error = 0;
         projectionError_[j] = error;
         worst = std::max(worst, error);
     }
@@ -276,6 +285,7 @@ void SolveStage::projectSprings(BodyStore& bodies, const SpringStore& springs,
         row.rB = geometry.rB;
         row.impulse = 0;
         row.spectralRadius = 0;  // a position correction: the element's whole stiffness
+        row.discreteGradient = false;
     }
     prepareSpringRows(projectedBodies_, projectedRows_, context.h, false);
     for (std::size_t j = 0; j < projectedRows_.size(); ++j) {

@@ -20,6 +20,8 @@ namespace tumble {
 struct SpringStepState {
     Real tension = 0;    ///< (N), positive pulls
     bool slack = false;  ///< tension-only and carrying nothing
+    /// A discrete-gradient thread's half impulse of the step, applied again in the next (N s).
+    Vec3 carried = Vec3::Zero();
 };
 
 class SpringStore : public DenseStore<SpringId> {

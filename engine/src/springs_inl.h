@@ -54,6 +54,9 @@ void buildSpringRows(const SpringStore& springs, const BodyStore& bodies, Real h
         row.catching = def.tensionOnly && springs.state[i].tension <= 0;
         row.spectralRadius = trapezoidal ? 1 - def.numericalDamping : 0;
         row.geometricStiffness = trapezoidal;
+        // An undamped thread conserves its energy through catches (spring_row.h).
+        row.discreteGradient = trapezoidal && def.tensionOnly && def.numericalDamping == 0;
+        row.carried = springs.state[i].carried;
         if (row.spectralRadius > 0) {
             row.startVelocity = startAnchorVelocity(bodies, b, world, row.rB) -
                                 startAnchorVelocity(bodies, a, false, row.rA);

@@ -283,6 +283,7 @@ void SpringBlockSolver::addTransverseRows(std::span<const SolverBody> bodies) {
             transverse.damping = 0;
             transverse.tensionOnly = false;
             transverse.geometricStiffness = false;
+            transverse.discreteGradient = false;
             transverse.impulse = 0;
             prepareSpringRow(a, b, transverse, h);
             if (transverse.mass > 0) {
@@ -404,6 +405,8 @@ Real SpringBlockSolver::solve(std::span<SolverBody> bodies, std::span<SpringRow>
         return 0;
     // The rows are solved where they lie: the caller's targets and impulses between solves
     // (the joints' block: updateJointBlockTargets) are read as they are.
+    // A discrete-gradient thread's row is the block's own: settle() linearises it again, in
+    // place, and the engine moves no thread's target between solves.
     elements_ = rows;
     if (settled_) {
         computeUpdate(bodies);
@@ -448,6 +451,40 @@ bool SpringBlockSolver::refreshTransverseRows(std::span<SolverBody> bodies) {
     return true;
 }
 
+bool SpringBlockSolver::findStaleThreads(std::span<const SolverBody> bodies) {
+    stale_.assign(elementCount_, 0);
+    endSpan_.resize(elementCount_);
+    if (!(h_ > 0))
+        return false;
+    bool any = false;
+    for (std::size_t i = 0; i < elementCount_; ++i) {
+        const SpringRow& row = elements_[i];
+        if (!row.discreteGradient || !active_[i] || !wanted_[i])
+            continue;
+        stale_[i] = threadRowStale(bodies[row.bodyA], bodies[row.bodyB], row, h_, endSpan_[i]);
+        any = any || stale_[i];
+    }
+    return any;
+}
+
+void SpringBlockSolver::relineariseStaleThreads(std::span<SolverBody> bodies, bool lastRound) {
+    for (std::size_t i = 0; i < elementCount_; ++i) {
+        if (!stale_[i])
+            continue;
+        SpringRow& row = elements_[i];
+        SolverBody& a = bodies[row.bodyA];
+        SolverBody& b = bodies[row.bodyB];
+        // The row's impulse moves to its new line.
+        applySpringImpulse(a, b, row, -row.impulse);
+        // Unsettled for the last round: implicit Euler, which cannot gain (spring_row.h).
+        if (lastRound)
+            implicitEulerThreadRow(a, b, row, h_);
+        else
+            lineariseThreadRow(a, b, row, h_, endSpan_[i]);
+        applySpringImpulse(a, b, row, row.impulse);
+    }
+}
+
 Real SpringBlockSolver::settle(std::span<SolverBody> bodies) {
     const std::size_t n = rowCount();
     settled_ = true;
@@ -476,12 +513,17 @@ Real SpringBlockSolver::settle(std::span<SolverBody> bodies) {
             const SolverBody& b = bodies[r.bodyB];
             // Pushes and pulls below kFlipSpeed are rounding (a net falling flat has threads at
             // exactly their rest length): flipping on them cost a refactorisation per round.
-            wanted_[i] = active_[i] ? r.impulse / r.mass <= kFlipSpeed
+            // A discrete-gradient thread taut at the start pulls whatever its end stretch
+            // (spring_row.h): a push is its linear model's, mended by linearising again.
+            const bool pulls = r.discreteGradient && r.length >= r.restLength;
+            wanted_[i] = active_[i] ? pulls || r.impulse / r.mass <= kFlipSpeed
                                     : springRowSpeed(a, b, r) + r.bias > kFlipSpeed;
             changed = changed || wanted_[i] != active_[i];
         }
         for (std::size_t i = elementCount_; i < n; ++i)
             wanted_[i] = wanted_[owner_[i - elementCount_]];
+        const bool stale = findStaleThreads(bodies);
+        changed = changed || stale;
         if (!changed)
             return change;
         // Undo the round, release the rows that leave, and solve again with the new set.
@@ -493,6 +535,8 @@ Real SpringBlockSolver::settle(std::span<SolverBody> bodies) {
             applySpringImpulse(bodies[r.bodyA], bodies[r.bodyB], r, keep - r.impulse);
             r.impulse = keep;
         }
+        if (stale)
+            relineariseStaleThreads(bodies, round + 2 == kActiveSetRounds);
         std::swap(active_, wanted_);
         assemble(bodies);
         if (!factor()) {

@@ -15,6 +15,8 @@ constexpr Real kMinimumLength = 1e-12;
 constexpr Real kFourthOrderUpTo = 1.5;
 // (omega h)^2 from which the unresolved element is damped: rho = this / (omega h)^2.
 constexpr Real kDampedFrom = 4;
+// (omega h)^2 up to which an unresolved thread takes the discrete gradient (spring_row.h).
+constexpr Real kDiscreteGradientUpTo = 100;
 
 struct SchemeWeights {
     Real next;      // w1
@@ -44,7 +46,156 @@ SchemeWeights catchWeights(Real spectralRadius, Real squared) {
     return schemeWeights(0, squared);
 }
 
+// A thread's stretch at the step's end is linearised at no less than this share of its rest
+// length when it is slack at the start (the discrete gradient's slope is 0 below it: such a row
+// could never take load).
+constexpr Real kCatchFloor = 1e-3;
+// A discrete-gradient row whose linear model misses the gradient at the solved stretch by more
+// than this share of it is linearised there again and the block solved again.
+constexpr Real kGradientTolerance = 1e-2;
+// ... or whose direction (d0 + d1) / |d0 + d1| moved by more than this (rad).
+constexpr Real kDirectionTolerance = 1e-2;
+// Newton (or bisection) steps of a thread's first guess alone (threadStretchAlone).
+constexpr int kLocalIterations = 12;
+
+// The discrete gradient (V(c1) - V(c0)) / (c1 - c0) of a thread's energy V = k max(C, 0)^2 / 2
+// between the stretches c0 and c1 (N), and its derivative in c1 (N/m).
+struct Gradient {
+    Real value;
+    Real slope;
+};
+
+Gradient threadGradient(Real k, Real c0, Real c1) {
+    if (c0 >= 0 && c1 >= 0)
+        return {0.5 * k * (c0 + c1), 0.5 * k};
+    if (c0 >= 0) {  // released within the step
+        const Real q = c0 / (c0 - c1);
+        return {0.5 * k * c0 * q, 0.5 * k * q * q};
+    }
+    if (c1 <= 0)
+        return {0, 0};
+    const Real q = c1 / (c1 - c0);  // caught within the step: the share of it spent taut
+    return {0.5 * k * c1 * q, 0.5 * k * q * (2 - q)};
+}
+
+// The row's Jacobians along its direction, and J M^-1 J'.
+Real setJacobians(const SolverBody& a, const SolverBody& b, SpringRow& row) {
+    row.angularA = row.rA.cross(row.direction);
+    row.angularB = row.rB.cross(row.direction);
+    row.angularImpulseA = a.inverseInertia * row.angularA;
+    row.angularImpulseB = b.inverseInertia * row.angularB;
+    return a.inverseMass + b.inverseMass + row.angularA.dot(row.angularImpulseA) +
+           row.angularB.dot(row.angularImpulseB);
+}
+
+// Anchor B's velocity minus anchor A's with the bodies' current velocities (m/s).
+Vec3 anchorSpeed(const SolverBody& a, const SolverBody& b, const SpringRow& row) {
+    return b.linearVelocity + b.angularVelocity.cross(row.rB) - a.linearVelocity -
+           a.angularVelocity.cross(row.rA);
+}
+
+// The end-of-step stretch c1 of a thread alone between its bodies: the root of c1 + (h^2 / 2)
+// J M^-1 J' D(c0, c1) = free, free its end stretch without this step's half (increasing in c1:
+// D' >= 0). A first guess for the block's rounds, which only correct it: from the constant-velocity
+// guess, Newton on a stiff catch halves its distance to the root per round.
+Real threadStretchAlone(Real k, Real c0, Real free, Real weight) {
+    Real lo = std::min<Real>(free, 0) - std::abs(c0), hi = free;  // g(lo) <= 0 <= g(hi)
+    Real c1 = free;
+    for (int i = 0; i < kLocalIterations; ++i) {
+        const Gradient g = threadGradient(k, c0, c1);
+        const Real residual = c1 + weight * g.value - free;
+        if (residual > 0)
+            hi = c1;
+        else
+            lo = c1;
+        const Real newton = c1 - residual / (1 + weight * g.slope);
+        c1 = newton > lo && newton < hi ? newton : 0.5 * (lo + hi);
+    }
+    return c1;
+}
+
+// A discrete-gradient row's half impulse from the last step, along last step's line.
+void applyCarriedImpulse(SolverBody& a, SolverBody& b, const SpringRow& row) {
+    a.linearVelocity -= a.inverseMass * row.carried;
+    a.angularVelocity -= a.inverseInertia * row.rA.cross(row.carried);
+    b.linearVelocity += b.inverseMass * row.carried;
+    b.angularVelocity += b.inverseInertia * row.rB.cross(row.carried);
+}
+
 }  // namespace
+
+void implicitEulerThreadRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h) {
+    row.discreteGradient = false;
+    row.direction = row.span / row.length;
+    const Real inverseMass = setJacobians(a, b, row);
+    const Real resistance = row.damping + h * row.stiffness;  // spring_row.h, rho = 0
+    if (!(resistance > 0) || !(inverseMass > 0)) {
+        row.mass = 0;
+        return;
+    }
+    row.softness = 1 / (h * resistance);
+    row.mass = 1 / (inverseMass + row.softness);
+    row.bias = row.stiffness * (row.length - row.restLength) / resistance;
+}
+
+bool threadRowStale(const SolverBody& a, const SolverBody& b, const SpringRow& row, Real h,
+                    Vec3& endSpan) {
+    endSpan = row.span + h * anchorSpeed(a, b, row);
+    const Vec3 mid = row.span + endSpan;
+    const Real midLength = mid.norm();
+    if (!(midLength > kMinimumLength))
+        return false;
+    if ((mid / midLength - row.direction).norm() > kDirectionTolerance)
+        return true;
+    const Real k = row.stiffness;
+    const Real c0 = row.length - row.restLength;
+    const Real c1 = endSpan.norm() - row.restLength;
+    const Real floor = kCatchFloor * row.restLength;
+    if (c0 < 0 && c1 <= floor && row.linearisedAt <= floor)
+        return false;  // linearised at the floor already (lineariseThreadRow)
+    const Gradient at = threadGradient(k, c0, row.linearisedAt);
+    const Real model = at.value + at.slope * (c1 - row.linearisedAt);
+    const Real exact = threadGradient(k, c0, c1).value;
+    return std::abs(model - exact) >
+           kGradientTolerance * std::max(std::abs(exact), std::abs(model));
+}
+
+// Gonzalez's discrete gradient: along m = (d0 + d1) / (L0 + L1), for which m . (d1 - d0) =
+// L1 - L0 exactly. With n = m / s, s = |m| <= 1, and the rate w = J v1 along n, the new half is
+// -2 lambda / (h s) = D(c0, c1*) + D' (c0 + h s w - c1*) + c s w (spring_row.h).
+void lineariseThreadRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h,
+                        const Vec3& endSpan) {
+    const Real k = row.stiffness;
+    const Real c0 = row.length - row.restLength;
+    Vec3 end = endSpan;
+    Real c1 = end.norm() - row.restLength;
+    const Real floor = kCatchFloor * row.restLength;
+    if (c1 < floor && (c0 < 0 || !(threadGradient(k, c0, c1).slope > 0))) {
+        // Linearise just past the rest length, along the span's line: below it the gradient's
+        // slope is 0 and the row could never take load.
+        const Real endLength = end.norm();
+        end = (endLength > kMinimumLength ? Vec3(end / endLength) : row.direction) *
+              (row.restLength + floor);
+        c1 = floor;
+    }
+    const Gradient g = threadGradient(k, c0, c1);
+    const Vec3 mid = row.span + end;
+    const Real midLength = mid.norm();
+    if (midLength > kMinimumLength)
+        row.direction = mid / midLength;
+    const Real scale =
+        midLength > kMinimumLength ? midLength / (row.length + c1 + row.restLength) : Real(1);
+    row.linearisedAt = c1;
+    const Real inverseMass = setJacobians(a, b, row);
+    const Real resistance = scale * scale * (h * g.slope + row.damping);
+    if (!(resistance > 0) || !(inverseMass > 0)) {
+        row.mass = 0;
+        return;
+    }
+    row.softness = 2 / (h * resistance);
+    row.mass = 1 / (inverseMass + row.softness);
+    row.bias = scale * (g.value + g.slope * (c0 - c1)) / resistance;
+}
 
 void prepareSpringRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h) {
     row.knownImpulse = 0;
@@ -55,6 +206,26 @@ void prepareSpringRow(const SolverBody& a, const SolverBody& b, SpringRow& row, 
     const Real inverseMass = a.inverseMass + b.inverseMass + row.angularA.dot(row.angularImpulseA) +
                              row.angularB.dot(row.angularImpulseB);
     const Real squared = h * h * row.stiffness * inverseMass;  // (omega h)^2
+    // Only unresolved threads, and not the stiffest, take the discrete gradient (see above).
+    row.discreteGradient =
+        row.discreteGradient && squared >= kDampedFrom && squared <= kDiscreteGradientUpTo;
+    if (row.discreteGradient) {
+        // The last step's half comes again; this step's is linearised at constant velocity.
+        row.knownImpulse = row.direction.dot(row.carried);
+        row.span = row.length * row.direction;
+        Vec3 endSpan =
+            row.span + h * (row.startVelocity + (a.inverseMass + b.inverseMass) * row.carried);
+        const Real endLength = endSpan.norm();
+        if (!(row.length >= kMinimumLength && inverseMass > 0 && endLength > kMinimumLength)) {
+            row.mass = 0;
+            return;
+        }
+        const Real c0 = row.length - row.restLength;
+        const Real c1 = threadStretchAlone(row.stiffness, c0, endLength - row.restLength,
+                                           0.5 * h * h * inverseMass);
+        lineariseThreadRow(a, b, row, h, endSpan * ((row.restLength + c1) / endLength));
+        return;
+    }
     const SchemeWeights w = row.catching ? catchWeights(row.spectralRadius, squared)
                                          : schemeWeights(row.spectralRadius, squared);
     const Real next = w.next, last = w.last, rateNext = w.rateNext;
@@ -101,7 +272,12 @@ void prepareSpringRows(std::span<SolverBody> bodies, std::span<SpringRow> rows, 
         row.impulse -= row.knownImpulse;  // the warm start is the whole step's impulse
         if (row.mass == 0 || !warmStart || (row.tensionOnly && row.impulse > 0))
             row.impulse = 0;
-        applySpringImpulse(a, b, row, row.impulse + row.knownImpulse);
+        if (row.discreteGradient) {
+            applySpringImpulse(a, b, row, row.impulse);
+            applyCarriedImpulse(a, b, row);
+        } else {
+            applySpringImpulse(a, b, row, row.impulse + row.knownImpulse);
+        }
     }
 }
 

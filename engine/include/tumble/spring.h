@@ -12,8 +12,10 @@
 /// - Implicit (default): a soft constraint row in the solver, a three-level Newmark scheme on
 ///   the spring (see tumble/solver/spring_row.h): second order and without numerical damping
 ///   while the step resolves the element (omega h <= 2), so only c dissipates; a stiffer element
-///   is damped (spectral radius 4 / (omega h)^2) rather than left to swing. Stable at any
-///   stiffness. `numericalDamping` adds damping at every omega h on request.
+///   is damped (spectral radius 4 / (omega h)^2) rather than left to swing -- except an undamped
+///   thread (tension-only, numericalDamping 0) with 4 <= (omega h)^2 <= 100, which takes an
+///   energy-conserving discrete gradient, so its catches bounce instead of sticking. Stable at
+///   any stiffness. `numericalDamping` adds damping at every omega h on request.
 /// - BackwardEuler: the same row with implicit Euler (first order): stable at any stiffness, but
 ///   it damps every mode it resolves poorly (a soft net lost 12-68 % of its energy in 2 s).
 

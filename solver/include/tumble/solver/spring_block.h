@@ -95,6 +95,12 @@ private:
     void start(std::span<const SolverBody> bodies);
     /// The first solve of a step: settles the tension-only active set.
     Real settle(std::span<SolverBody> bodies);
+    /// Marks the discrete-gradient threads whose linear model misses the span the last round
+    /// solved for (spring_row.h); whether any.
+    bool findStaleThreads(std::span<const SolverBody> bodies);
+    /// Linearises the marked threads again at that span (after the round is undone).
+    /// lastRound: implicit Euler rows instead, for the last round.
+    void relineariseStaleThreads(std::span<SolverBody> bodies, bool lastRound);
     /// Whether the settled solve's tensions leave a taut element's transverse rows far from
     /// the tension they were built with; if so, undoes the solve and rebuilds them with it.
     bool refreshTransverseRows(std::span<SolverBody> bodies);
@@ -154,7 +160,9 @@ private:
     std::vector<Real> work_;
     std::vector<Real> delta_;
     std::vector<char> active_;
-    std::vector<char> wanted_;  ///< the next round's active set
+    std::vector<char> wanted_;   ///< the next round's active set
+    std::vector<char> stale_;    ///< per element: findStaleThreads() marked it
+    std::vector<Vec3> endSpan_;  ///< per element: the span it found
     bool settled_ = false;
     bool factored_ = false;
 };

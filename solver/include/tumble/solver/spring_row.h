@@ -48,6 +48,37 @@
 /// 60 s at 0.7); implicit Euler catches dissipated 98 % in 10 s from omega_e h = 0.7 and made
 /// the net-10 sweep's error 6x the trapezoidal catches' at h = 1/240 (`net-energy`).
 ///
+/// Unresolved undamped threads (4 <= (omega h)^2 <= 100, numericalDamping 0): the discrete
+/// gradient (`discreteGradient`). Why the three-level weights cannot serve them undamped: at
+/// large omega h a taut step's known levels pull with ~(1 - w1) h k C while the new level, which
+/// would push back, is cut off by the thread's max(C, 0), so a thread released from a stretch at
+/// rest reaches ~0.75 omega h times its true speed (measured: beta = 1/4 on unresolved threads
+/// blew the net-10 sweep up at 1/30 and `net-energy` from omega_e h = 5). Instead, in the level
+/// velocity u_n (v_n is the step's mean), the energy-conserving midpoint scheme
+///     x1 = x0 + h (u0 + u1) / 2,   u1 = u0 - h M^-1 G(x0, x1),
+/// with G Gonzalez's discrete gradient of V = k max(L - L0, 0)^2 / 2, the force D m along
+/// m = (d0 + d1) / (L0 + L1) (d the anchor span, L its length) with D = (V(L1) - V(L0)) / (L1 -
+/// L0), keeps u' M u / 2 + V exactly: m . (d1 - d0) = L1 - L0. In the engine's variables
+/// v1 = u0 - (h/2) M^-1 G(x0, x1) and u0 = v0 - (h/2) M^-1 G(x_-1, x0): each step's impulse is
+/// last step's new half (`carried`, a vector along last step's m, applied once as the known
+/// part) plus this step's, solved implicitly. A thread created, or woken after it slept in
+/// equilibrium, starts consistently (u = v). D(c0, c1) is piecewise: both taut (k/2)(c0 + c1),
+/// both slack 0, caught (k/2) c1^2 / (c1 - c0), released (k/2) c0^2 / (c0 - c1) (> 0: a thread
+/// taut at the start always pulls). The row is Newton's linearisation of the new half at a
+/// guessed end span (c1*, m*): with m* = s n, w = J v1 along n,
+///     -2 lambda / (h s) = D(c0, c1*) + D' (c0 + h s w - c1*) + c s w,
+///     r = s^2 (h D' + c),  gamma = 2 / (h r),  bias = s (D + D' (c0 - c1*)) / r.
+/// The first guess solves the thread alone (threadStretchAlone: a scalar root); the block's
+/// active-set rounds linearise a thread again where the solved span misses the model by more
+/// than 1 % or turns m by more than 0.01 rad, and a thread still unsettled for the last round
+/// takes implicit Euler for the step (dissipative, never gaining). In 1D the converged scheme
+/// returns a bounce's and a release's speed exactly at every omega h (0.3 ... 100). Limits,
+/// measured: above (omega h)^2 ~ 100 the rounds do not settle a tumbling net (`net-energy` at
+/// omega_e h = 10 grew without bound, with the Euler fallback 28x at 20), so the stiffest keep
+/// the damped weights; on resolved threads the midpoint's phase error (twice leapfrog's) made
+/// the net-10 sweep's error at 1/240 0.0209 m against the peers' 0.0195 (Fox-Goodwin's 0.0063),
+/// so they keep the weights above.
+///
 /// Deterministic: rows are solved in array order.
 
 #include <cstdint>
@@ -80,6 +111,14 @@ struct SpringRow {
     /// The block solve adds the element's transverse (geometric) stiffness when it is taut
     /// (SpringBlockSolver::prepare).
     bool geometricStiffness = false;
+    /// A thread on the energy-conserving scheme (see below): the row solves the new half of the
+    /// discrete gradient, linearised at the stretch `linearisedAt`.
+    bool discreteGradient = false;
+    /// Its half impulse of the last step on B's anchor (N s; -carried on A's), applied again in
+    /// this one (prepareSpringRows).
+    Vec3 carried = Vec3::Zero();
+    Vec3 span = Vec3::Zero();  ///< anchor B - anchor A at the step's start (m)
+    Real linearisedAt = 0;     ///< C1* (m): the end-of-step stretch the row is linearised at
 
     // Filled by prepareSpringRows().
     Vec3 angularA = Vec3::Zero();         ///< rA x n (m)
@@ -112,6 +151,20 @@ inline Real springRowSpeed(const SolverBody& a, const SolverBody& b, const Sprin
 /// untouched). A row with k = c = 0, or whose anchors coincide (no direction), gets mass 0:
 /// inactive.
 void prepareSpringRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h);
+
+/// A discrete-gradient thread row's anchor span at the step's end from the bodies' velocities
+/// (m), and whether its linear model is off there by more than the tolerance.
+bool threadRowStale(const SolverBody& a, const SolverBody& b, const SpringRow& row, Real h,
+                    Vec3& endSpan);
+
+/// A discrete-gradient thread row whose linearisation did not settle, made an implicit Euler row
+/// on its start-of-step line for the rest of the step (its carried half stays applied).
+void implicitEulerThreadRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h);
+
+/// A discrete-gradient thread row linearised at the end-of-step span `endSpan`: its direction,
+/// Jacobians, softness, bias and effective mass (its impulse untouched).
+void lineariseThreadRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h,
+                        const Vec3& endSpan);
 
 /// Whether a prepared row's element is one the step does not resolve ((omega h)^2 >= 4): its
 /// scheme damps it, and its turning within the step wants post-stabilisation.
