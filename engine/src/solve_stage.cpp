@@ -197,7 +197,7 @@ void SolveStage::holdAnchors(const BodyStore& bodies, const ContactManager& cont
             return;
         const std::uint32_t index = bodies.indexOf(body);
         if (bodies.isAwakeDynamic(index))  // not a kinematic platform a spring hangs from
-            sprung_[solverIndex(bodies, index)] = 1;
+            sprung_[solverBodyIndex(bodies, index)] = 1;
     };
     for (const SpringDef& def : springs.defs) {
         markSprung(def.bodyA);
