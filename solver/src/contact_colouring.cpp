@@ -61,6 +61,14 @@ void ContactRows::colour(std::span<const SolverBody> bodies,
 bool ContactRows::build(std::span<const SolverBody> bodies,
                         std::span<const ContactConstraint> constraints,
                         const SolverSettings& settings, Real inverseH) {
+    // A lane reserves four points: manifolds of one or two points (a pile of spheres and
+    // capsules, 1.2 a manifold) stream mostly padding, and the scalar sweep's compact rows,
+    // which give the same bits, ran pile-1000 at 0.93x the rows' time.
+    std::size_t points = 0;
+    for (const ContactConstraint& c : constraints)
+        points += static_cast<std::size_t>(c.pointCount);
+    if (points * kMinimumFillDenominator < constraints.size() * kPointsPerLane)
+        return false;
     colour(bodies, constraints);
     std::size_t bundleCount = 0;
     for (int colour = 0; colour < colourCount_; ++colour)

@@ -49,12 +49,15 @@ using LaneMask = std::int64_t __attribute__((vector_size(32), aligned(32)));
 class ContactRows {
 public:
     static constexpr int kWidth = 4;
-    /// The rows are built when manifolds >= lanes / kMinimumFillDenominator.
+    static constexpr std::size_t kPointsPerLane = 4;
+    /// The rows are built when manifolds >= lanes / kMinimumFillDenominator and points >=
+    /// manifolds * kPointsPerLane / kMinimumFillDenominator.
     static constexpr std::size_t kMinimumFillDenominator = 2;
 
     /// Colours the prepared constraints and builds the rows from them (their Jacobians, masses,
     /// targets and warm-start impulses); false, with no rows built, when the colours would fill
-    /// fewer than half the lanes. Allocates only when the arrays grow.
+    /// fewer than half the lanes or the manifolds fewer than half their point slots. Allocates only
+    /// when the arrays grow.
     bool build(std::span<const SolverBody> bodies, std::span<const ContactConstraint> constraints,
                const SolverSettings& settings, Real inverseH);
     /// One sweep over the rows, as ContactSolver::solveVelocitySweep (which calls it) without
