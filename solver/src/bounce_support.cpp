@@ -33,24 +33,19 @@ SolverBody atRest(const SolverBody& body) {
 }  // namespace
 
 void addSupportAcceleration(std::span<const SolverBody> bodies,
-                            std::span<ContactConstraint> constraints, Real h, bool warmStart,
+                            std::span<ContactConstraint> constraints, Real h,
                             std::vector<SolverBody>& scratch) {
-    bool bouncy = false;
-    for (ContactConstraint& c : constraints) {
-        bouncy = bouncy || c.restitution > 0;
-        for (int i = 0; i < c.pointCount; ++i)
-            c.points[i].supportSpeed = 0;
-    }
-    if (!bouncy || !warmStart)
-        return;
     scratch.resize(bodies.size());
     for (std::size_t i = 0; i < bodies.size(); ++i)
         scratch[i] = atRest(bodies[i]);
     for (const ContactConstraint& c : constraints)
         applyCached(scratch[c.bodyA], scratch[c.bodyB], c);
     for (ContactConstraint& c : constraints) {
-        if (c.restitution == 0)
+        if (c.restitution == 0) {
+            for (int i = 0; i < c.pointCount; ++i)
+                c.points[i].supportSpeed = 0;
             continue;
+        }
         SolverBody ownA = atRest(bodies[c.bodyA]);
         SolverBody ownB = atRest(bodies[c.bodyB]);
         applyCached(ownA, ownB, c);

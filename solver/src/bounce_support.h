@@ -23,10 +23,11 @@ namespace tumble {
 
 /// For every constraint with restitution > 0, sets its points' supportSpeed to the normal velocity
 /// change the warm-start impulses of the other constraints give (m/s) and adds that / h to their
-/// normalAcceleration (m/s^2); zero elsewhere, and everywhere without warm starting. Uses the
-/// cached impulses as they come in; `scratch` holds the bodies' velocity changes (grows only).
+/// normalAcceleration (m/s^2); zero elsewhere. Called with warm starting on and some restitution
+/// (otherwise every supportSpeed is zero, which prepare sets itself). Uses the cached impulses as
+/// they come in; `scratch` holds the bodies' velocity changes (grows only).
 void addSupportAcceleration(std::span<const SolverBody> bodies,
-                            std::span<ContactConstraint> constraints, Real h, bool warmStart,
+                            std::span<ContactConstraint> constraints, Real h,
                             std::vector<SolverBody>& scratch);
 
 }  // namespace tumble

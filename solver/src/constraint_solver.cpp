@@ -44,14 +44,9 @@ Real ConstraintSolver::prepare(std::span<SolverBody> bodies,
                                std::span<ContactConstraint> constraints,
                                std::span<SpringRow> springs, std::span<JointRow> joints, Real h,
                                const SolverSettings& settings) {
-    Real deepestPenetration = 0;
-    for (const ContactConstraint& c : constraints) {
-        for (int i = 0; i < c.pointCount; ++i)
-            deepestPenetration = std::max(deepestPenetration, -c.points[i].separation);
-    }
     if (settings.jointGeometricStiffness && !joints.empty())
         applyJointGeometricStiffness(bodies, joints, h, geometricStiffness_);
-    contacts_.prepare(bodies, constraints, h, settings);
+    const Real deepestPenetration = contacts_.prepare(bodies, constraints, h, settings);
     prepareSegmentContacts(bodies, segments_, settings.warmStart);
     prepareSpringRows(bodies, springs, h, settings.warmStart);
     directSprings_ = settings.springSolve == SpringSolve::Direct && !springs.empty();

@@ -206,16 +206,27 @@ void checkSolverSettings(const SolverSettings& s) {
     }
 }
 
-void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
+Real ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                             Real h, const SolverSettings& settings) {
     const bool split = settings.stabilisation == Stabilisation::SplitImpulse;
-    addSupportAcceleration(bodies, constraints, h, settings.warmStart, supportBodies_);
+    // The support pass only matters when something can bounce; a scene without restitution
+    // (every benchmark pile) reads one header line per manifold here, not its points.
+    const bool support = settings.warmStart &&
+                         std::any_of(constraints.begin(), constraints.end(),
+                                     [](const ContactConstraint& c) { return c.restitution > 0; });
+    if (support)
+        addSupportAcceleration(bodies, constraints, h, supportBodies_);
+    Real deepestPenetration = 0;
+    bounceCorrections_ = false;
     for (ContactConstraint& c : constraints) {
         SolverBody& a = bodies[c.bodyA];
         SolverBody& b = bodies[c.bodyB];
         c.tangents = frictionBasis(c.normal);
         for (int i = 0; i < c.pointCount; ++i) {
             ContactConstraintPoint& p = c.points[i];
+            deepestPenetration = std::max(deepestPenetration, -p.separation);
+            if (!support)
+                p.supportSpeed = 0;
             const Mat3 k = pointMassMatrix(a, b, p);
             const Real kNormal = c.normal.dot(k * c.normal);
             p.normalMass = kNormal > 0 ? 1 / kNormal : 0;
@@ -256,6 +267,7 @@ void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
             p.bounceCorrection = split && p.bounces && p.separation > 0
                                      ? p.separation + h * p.reboundSpeed - rebound
                                      : 0;
+            bounceCorrections_ = bounceCorrections_ || p.bounceCorrection != 0;
             if (!settings.warmStart || c.friction == 0)
                 p.tangentImpulse = {0, 0};
             if (!settings.warmStart)
@@ -303,9 +315,12 @@ void ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
         for (ContactConstraint& c : constraints)
             narrow_.add(c, static_cast<std::uint32_t>(&c - constraints.data()), settings);
     }
+    return deepestPenetration;
 }
 
 void ContactSolver::dropBounceCorrections(std::span<ContactConstraint> constraints) {
+    if (!bounceCorrections_)
+        return;  // all zero already: no pass over the constraints
     for (ContactConstraint& c : constraints) {
         for (int i = 0; i < c.pointCount; ++i)
             c.points[i].bounceCorrection = 0;

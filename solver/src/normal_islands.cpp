@@ -163,6 +163,8 @@ void NormalIslands::selectGroups(std::span<const SolverBody> bodies,
             group = renumber[group];
     }
     groupBegin_.assign(groupCount_ + 1, 0);
+    if (groupCount_ == 0)
+        return;  // every normalGroup is kNone already: no third pass (a pile has no groups)
     for (ContactConstraint& c : constraints) {
         if (c.pointCount == 0 || !(movable(bodies[c.bodyA]) || movable(bodies[c.bodyB])))
             continue;
@@ -179,7 +181,7 @@ void NormalIslands::buildMatrices(std::span<const SolverBody> bodies,
     rows_.resize(groupBegin_.back());
     std::vector<std::uint32_t>& cursor = counts_[0];
     cursor.assign(groupBegin_.begin(), groupBegin_.end());
-    for (std::uint32_t index = 0; index < constraints.size(); ++index) {
+    for (std::uint32_t index = 0; groupCount_ > 0 && index < constraints.size(); ++index) {
         const ContactConstraint& c = constraints[index];
         if (c.normalGroup == kNone)
             continue;

@@ -78,42 +78,48 @@ struct NormalFactor {
     Real l[4][4] = {};          ///< lower triangle of L, |S| x |S|
 };
 
-struct ContactConstraintPoint {
+/// One contact point. The fields most passes read (the engine's build and read-back, the warm
+/// start, the residual, the bounce bookkeeping) come first and fill the first two cache lines;
+/// prepare's derived rows follow. A pile's manifolds hold 1.2 points of the four slots, and the
+/// passes over the constraints stream only the lines they touch.
+struct alignas(64) ContactConstraintPoint {
     Vec3 rA = Vec3::Zero();  ///< from A's centre of mass to the point (world, m)
     Vec3 rB = Vec3::Zero();  ///< from B's centre of mass to the point (world, m)
     Real separation = 0;     ///< along the normal at the start of the step (m); < 0 penetrating
     Real normalImpulse = 0;  ///< accumulated (N s): warm start in, result out
     std::array<Real, 2> tangentImpulse{};  ///< along tangent1, tangent2 (N s)
-
-    // Filled by prepare().
-    Real normalMass = 0;  ///< effective mass along the normal (kg)
-    DiscBlock tangent;    ///< K on the tangent plane: slip velocity per impulse (1/kg)
-    std::array<Real, 2> tangentMass{};      ///< 1 / K_tt of each tangent row (kg), box model
-    Vec3 angularA = Vec3::Zero();           ///< rA x n: A's angular normal Jacobian (m)
-    Vec3 angularB = Vec3::Zero();           ///< rB x n (m)
-    Vec3 angularImpulseA = Vec3::Zero();    ///< IA^-1 (rA x n): A's spin per unit normal impulse
-    Vec3 angularImpulseB = Vec3::Zero();    ///< IB^-1 (rB x n)
-    std::array<Vec3, 2> tangentAngularA{};  ///< rA x t_k for the two tangents (m)
-    std::array<Vec3, 2> tangentAngularB{};  ///< rB x t_k (m)
-    std::array<Vec3, 2> tangentImpulseA{};  ///< IA^-1 (rA x t_k)
-    std::array<Vec3, 2> tangentImpulseB{};  ///< IB^-1 (rB x t_k)
     /// Normal relative acceleration from the forces of this step (gravity...), (m/s^2); with it
     /// the solver finds when within the step, and how fast, a speculative point hits (see
     /// prepare). Zero when the caller does not know it.
     Real normalAcceleration = 0;
-    Real approachSpeed = 0;  ///< v_n before the solve (m/s), negative when approaching
     /// Part of v_n that the other contacts' support gives within the step (m/s), set by prepare
     /// (bounce_support.h); the impact is found with it, the acceleration includes it.
     Real supportSpeed = 0;
-    Real impactTime = 0;    ///< of the impact within the step (s), 0 when already touching
-    Real impactSpeed = 0;   ///< v_n at that time (m/s), negative when approaching
+
+    // Filled by prepare().
+    Real normalMass = 0;    ///< effective mass along the normal (kg)
     Real reboundSpeed = 0;  ///< v_n at the end of the step after a bounce (m/s)
-    bool bounces = false;   ///< Newton's law holds this step: the row is v_n >= reboundSpeed
     /// (m): a speculative point that bounced at separation s > 0 rebounds from the surface, not
     /// from s; the biased sweeps pull it back by this (see prepare and normalTarget)
     Real bounceCorrection = 0;
+    bool bounces = false;          ///< Newton's law holds this step: the row is v_n >= reboundSpeed
+    Real approachSpeed = 0;        ///< v_n before the solve (m/s), negative when approaching
+    Real impactTime = 0;           ///< of the impact within the step (s), 0 when already touching
+    Real impactSpeed = 0;          ///< v_n at that time (m/s), negative when approaching
+    Vec3 angularA = Vec3::Zero();  ///< rA x n: A's angular normal Jacobian (m)
+    Vec3 angularB = Vec3::Zero();  ///< rB x n (m)
+    Vec3 angularImpulseA = Vec3::Zero();  ///< IA^-1 (rA x n): A's spin per unit normal impulse
+    Vec3 angularImpulseB = Vec3::Zero();  ///< IB^-1 (rB x n)
+    DiscBlock tangent;  ///< K on the tangent plane: slip velocity per impulse (1/kg)
+    std::array<Real, 2> tangentMass{};      ///< 1 / K_tt of each tangent row (kg), box model
+    std::array<Vec3, 2> tangentAngularA{};  ///< rA x t_k for the two tangents (m)
+    std::array<Vec3, 2> tangentAngularB{};  ///< rB x t_k (m)
+    std::array<Vec3, 2> tangentImpulseA{};  ///< IA^-1 (rA x t_k)
+    std::array<Vec3, 2> tangentImpulseB{};  ///< IB^-1 (rB x t_k)
 };
 
+/// A manifold: its own fields first (those prepare fills too), the four point slots last, so a
+/// one-point manifold's hot lines lie together.
 struct ContactConstraint {
     std::uint32_t bodyA = 0;  ///< index into the body array
     std::uint32_t bodyB = 0;
@@ -131,19 +137,20 @@ struct ContactConstraint {
     /// warm start in, result out.
     Vec3 angularImpulse = Vec3::Zero();
     int pointCount = 0;
-    std::array<ContactConstraintPoint, 4> points;
 
     // Filled by prepare().
-    std::array<Vec3, 2> tangents{Vec3::UnitX(), Vec3::UnitY()};
-    /// K_ij: normal velocity change at point i per unit normal impulse at point j (1/kg).
-    Eigen::Matrix<Real, 4, 4> normalBlock = Eigen::Matrix<Real, 4, 4>::Zero();
-    Real spinMass = 0;           ///< 1 / n'(IA^-1 + IB^-1) n (kg m^2); 0: no spinning row
-    DiscBlock rolling;           ///< K of the relative spin about the tangents (1/(kg m^2))
-    bool rollingActive = false;  ///< rolling rows solved this step
-    Real angularReach = 0;       ///< farthest point from either centre of mass (m)
     /// Group whose normal rows NormalIslands solves together, or NormalIslands::kNone: the
     /// manifold's own block (normal_block.h).
     std::uint32_t normalGroup = NormalIslands::kNone;
+    std::array<Vec3, 2> tangents{Vec3::UnitX(), Vec3::UnitY()};
+    Real spinMass = 0;           ///< 1 / n'(IA^-1 + IB^-1) n (kg m^2); 0: no spinning row
+    bool rollingActive = false;  ///< rolling rows solved this step
+    Real angularReach = 0;       ///< farthest point from either centre of mass (m)
+    /// K_ij: normal velocity change at point i per unit normal impulse at point j (1/kg).
+    Eigen::Matrix<Real, 4, 4> normalBlock = Eigen::Matrix<Real, 4, 4>::Zero();
+    DiscBlock rolling;  ///< K of the relative spin about the tangents (1/(kg m^2))
+
+    std::array<ContactConstraintPoint, 4> points;
 };
 
 /// Extra velocity state for split impulse: moves positions this step only.
@@ -160,7 +167,8 @@ public:
     /// Effective masses, friction bases, approach speeds, impact times and bounces of every
     /// point, the groups solved exactly (NormalIslands), then the warm start: the cached impulses
     /// applied to `bodies` (all of them after every approach speed is measured).
-    void prepare(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints, Real h,
+    /// Returns the deepest penetration (m, >= 0), found on the way.
+    Real prepare(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints, Real h,
                  const SolverSettings& settings);
     /// One PGS sweep over the contacts with the given bias factor; returns the largest velocity
     /// change an impulse made (m/s). With settings.tolerance 0 nothing reads it, and only the
@@ -187,6 +195,7 @@ private:
     ContactRows rows_;                       ///< the wide rows (settings.colouredContacts)
     SweepRows narrow_;                       ///< the scalar sweep's compact rows, otherwise
     bool wide_ = false;                      ///< this step sweeps rows_
+    bool bounceCorrections_ = false;         ///< some point has one this step
 };
 
 }  // namespace tumble
