@@ -237,12 +237,17 @@ TEST(Sleep, PushedBodyMovesAfterWaking) {
     EXPECT_NEAR(world.position(box).x() - x0, x, 1e-6 * x);
 }
 
+// A unit cube resting on the ground at the origin that may not sleep.
+BodyId addRestlessBox(World& world) {
+    BodyDef restless{.position = Vec3(0, 0, 0.5)};
+    restless.allowSleep = false;
+    return addBox(world, restless);
+}
+
 TEST(Sleep, BodyThatMayNotSleepKeepsItsIslandAwake) {
     World world;
     addGround(world);
-    BodyDef restless{.position = Vec3(0, 0, 0.5)};
-    restless.allowSleep = false;
-    const BodyId lower = addBox(world, restless);
+    const BodyId lower = addRestlessBox(world);
     const BodyId upper = addBox(world, Vec3(0, 0, 1.5));
     const BodyId apart = addBox(world, Vec3(5, 0, 0.5));
     for (int i = 0; i < 300; ++i)
@@ -266,9 +271,7 @@ constexpr Real kBlinkGap = 0.021;
 TEST(Sleep, BodyBesideARestingAwakeBodyStaysAsleep) {
     World world;
     addGround(world);
-    BodyDef restless{.position = Vec3(0, 0, 0.5)};
-    restless.allowSleep = false;
-    const BodyId awake = addBox(world, restless);
+    const BodyId awake = addRestlessBox(world);
     const BodyId lone = addBox(world, Vec3(1 + kBlinkGap, 0, 0.5));
     const int perSecond = static_cast<int>(std::lround(1 / world.settings().timeStep));
     const int asleepAt = stepUntilAsleep(world, lone, perSecond);
