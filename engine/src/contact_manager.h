@@ -212,8 +212,12 @@ private:
     /// A contact began (got its first points) or ended (lost its last): events and warnings.
     void reportTouch(const Contact& contact, bool began, const BodyStore& bodies,
                      std::uint32_t indexA, std::uint32_t indexB);
-    /// Lists the sleeping body of a touching pair to be woken, if the other may wake it.
-    void wakeTouched(const BodyStore& bodies, std::uint32_t indexA, std::uint32_t indexB);
+    /// Lists the sleeping body of a touching pair to be woken, if the other may wake it and
+    /// its manifolds may push it this step (pushes).
+    void wakeTouched(const BodyStore& bodies, std::uint32_t indexA, std::uint32_t indexB,
+                     std::span<const Manifold> manifolds);
+    bool pushes(const BodyStore& bodies, std::uint32_t indexA, std::uint32_t indexB,
+                std::span<const Manifold> manifolds) const;
 
     /// A sweep-and-prune per grid cell. One sweep-and-prune over a whole pile keeps its
     /// endpoints sorted on the vertical axis too, where a pile five layers deep packs all its
@@ -233,6 +237,7 @@ private:
     std::vector<std::uint32_t> touchingScratch_;
     std::vector<PairWork> work_;  ///< collideActive's second pass
     ManifoldSet manifolds_;       ///< collidePair's (kept: 700 bytes, not cleared per pair)
+    Real stepLength_ = 0;         ///< this narrowphase's h (s), for pushes
     std::vector<std::uint32_t> addedParts_;  ///< records addPart made, to list in active_
     struct CachedPose {
         Transform pose;

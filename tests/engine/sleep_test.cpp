@@ -237,12 +237,17 @@ TEST(Sleep, PushedBodyMovesAfterWaking) {
     EXPECT_NEAR(world.position(box).x() - x0, x, 1e-6 * x);
 }
 
+// A unit cube resting on the ground at the origin that may not sleep.
+BodyId addRestlessBox(World& world) {
+    BodyDef restless{.position = Vec3(0, 0, 0.5)};
+    restless.allowSleep = false;
+    return addBox(world, restless);
+}
+
 TEST(Sleep, BodyThatMayNotSleepKeepsItsIslandAwake) {
     World world;
     addGround(world);
-    BodyDef restless{.position = Vec3(0, 0, 0.5)};
-    restless.allowSleep = false;
-    const BodyId lower = addBox(world, restless);
+    const BodyId lower = addRestlessBox(world);
     const BodyId upper = addBox(world, Vec3(0, 0, 1.5));
     const BodyId apart = addBox(world, Vec3(5, 0, 0.5));
     for (int i = 0; i < 300; ++i)
@@ -250,6 +255,56 @@ TEST(Sleep, BodyThatMayNotSleepKeepsItsIslandAwake) {
     EXPECT_TRUE(world.isAwake(lower));
     EXPECT_TRUE(world.isAwake(upper)) << "it rests on a body that may not sleep";
     EXPECT_FALSE(world.isAwake(apart)) << "a separate island sleeps";
+}
+
+// The gap of the two tests below: beyond contactMargin (2 cm), so two resting boxes this far
+// apart are two islands, but within contactMargin + g h^2 (2.27 cm at 1/60), the margin the
+// pair had once one of them slept -- the narrowphase sees the awake body's velocity after
+// gravity's push for the step, a sleeper's without. Such a pair woke the sleeper the step after
+// it fell asleep, over and over (the 5,000-body soak's body by the wall).
+constexpr Real kBlinkGap = 0.021;
+
+// A body asleep beside a resting body that stays awake is not woken by it: it falls asleep
+// after timeToSleep (tolerance, set before measuring: by 1 s) and then stays asleep for the
+// 5 s that follow (every step checked). Before the fix it was awake again one step after each
+// time it fell asleep.
+TEST(Sleep, BodyBesideARestingAwakeBodyStaysAsleep) {
+    World world;
+    addGround(world);
+    const BodyId awake = addRestlessBox(world);
+    const BodyId lone = addBox(world, Vec3(1 + kBlinkGap, 0, 0.5));
+    const int perSecond = static_cast<int>(std::lround(1 / world.settings().timeStep));
+    const int asleepAt = stepUntilAsleep(world, lone, perSecond);
+    ASSERT_GT(asleepAt, 0) << "the lone box did not fall asleep within 1 s";
+    for (int i = 0; i < 5 * perSecond; ++i) {
+        ASSERT_TRUE(world.step().ok());
+        ASSERT_FALSE(world.isAwake(lone)) << "woken " << i + 1 << " steps after falling asleep";
+    }
+    EXPECT_TRUE(world.isAwake(awake));
+}
+
+// A small pile placed at rest, and a box dropped from 0.3 m beside it that settles later: the
+// pile falls asleep first, the box beside it after. Everything is asleep by 2 s (tolerance, set
+// before measuring) and stays asleep for the 5 s that follow -- neither wakes the other.
+TEST(Sleep, PileAndABodyThatSettledBesideItLaterAllStayAsleep) {
+    World world;
+    addGround(world);
+    for (int i = 0; i < 3; ++i)
+        addBox(world, Vec3(i, 0, 0.5));
+    addBox(world, Vec3(1, 0, 1.5));
+    addBox(world, Vec3(3 + kBlinkGap, 0, 0.8));
+    const int perSecond = static_cast<int>(std::lround(1 / world.settings().timeStep));
+    int allAsleepAt = -1;
+    for (int i = 1; i <= 2 * perSecond && allAsleepAt < 0; ++i) {
+        ASSERT_TRUE(world.step().ok());
+        if (world.awakeBodyCount() == 0)
+            allAsleepAt = i;
+    }
+    ASSERT_GT(allAsleepAt, 0) << "not all asleep by 2 s";
+    for (int i = 0; i < 5 * perSecond; ++i) {
+        ASSERT_TRUE(world.step().ok());
+        ASSERT_EQ(world.awakeBodyCount(), 0) << "woken " << i + 1 << " steps after all slept";
+    }
 }
 
 // A sphere on the ground spinning slowly about the vertical: a point contact has no friction
