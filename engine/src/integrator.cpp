@@ -51,6 +51,13 @@ void integrateVelocity(BodyStore& bodies, std::uint32_t index, const StepContext
 
     m.linearVelocity +=
         h * (info.gravityScale * context.gravity + inertia.inverseMass * forces.force);
+    if (info.fixedRotation) {
+        // Zero inverse inertia (every lumped node): the angular velocity stays zero, and the
+        // rotation, gyroscopic test and damping below would only carry zeros (the same bits for
+        // an unrotated body; a rotated one could get a zero's sign flipped).
+        m.linearVelocity /= 1 + h * info.linearDamping;
+        return;
+    }
 
     // Angular part in body axes, where the inertia is constant.
     const Mat3 rotation = m.orientation.toRotationMatrix();

@@ -113,6 +113,12 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
         // So the rows see the damped mass M (1 + h c). No damping: bitwise the plain mass.
         const BodyInfo& info = bodies.info[i];
         s.inverseMass = inertia.inverseMass / (1 + context.h * info.linearDamping);
+        // A translation-only body (a lumped node): no rotation to apply to its zero inverse
+        // inertia (integrateVelocity says why the bits hold).
+        if (info.fixedRotation) {
+            s.inverseInertia = Mat3::Zero();
+            continue;
+        }
         const Mat3 rotation = m.orientation.toRotationMatrix();
         s.inverseInertia = rotation * inertia.inverseInertiaLocal * rotation.transpose() /
                            (1 + context.h * info.angularDamping);
@@ -272,6 +278,8 @@ void SolveStage::projectSprings(BodyStore& bodies, const SpringStore& springs,
         SolverBody& s = projectedBodies_[1 + k];
         s = SolverBody{};
         s.inverseMass = bodies.inertia[i].inverseMass;
+        if (bodies.info[i].fixedRotation)
+            continue;  // its inverse inertia stays zero, as in run()
         const Mat3 rotation = m.orientation.toRotationMatrix();
         s.inverseInertia = rotation * bodies.inertia[i].inverseInertiaLocal * rotation.transpose();
     }
