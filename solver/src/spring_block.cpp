@@ -459,8 +459,14 @@ bool SpringBlockSolver::findStaleThreads(std::span<const SolverBody> bodies) {
     bool any = false;
     for (std::size_t i = 0; i < elementCount_; ++i) {
         const SpringRow& row = elements_[i];
-        if (!row.discreteGradient || !active_[i] || !wanted_[i])
+        if (!row.discreteGradient || !wanted_[i])
             continue;
+        if (!active_[i]) {  // caught in this round: linearised where it ends
+            threadRowEndStretch(bodies[row.bodyA], bodies[row.bodyB], row, h_, endSpan_[i]);
+            stale_[i] = 1;
+            any = true;
+            continue;
+        }
         stale_[i] = threadRowStale(bodies[row.bodyA], bodies[row.bodyB], row, h_, endSpan_[i]);
         any = any || stale_[i];
     }
@@ -516,8 +522,18 @@ Real SpringBlockSolver::settle(std::span<SolverBody> bodies) {
             // A discrete-gradient thread taut at the start pulls whatever its end stretch
             // (spring_row.h): a push is its linear model's, mended by linearising again.
             const bool pulls = r.discreteGradient && r.length >= r.restLength;
-            wanted_[i] = active_[i] ? pulls || r.impulse / r.mass <= kFlipSpeed
-                                    : springRowSpeed(a, b, r) + r.bias > kFlipSpeed;
+            if (r.discreteGradient && !pulls) {
+                // One slack at the start pulls exactly when it ends stretched (its gradient is
+                // positive there), whatever its linear model says: a catch's tangent crosses
+                // zero above the rest length, and threads caught short of that were left out,
+                // ended stretched without a pull and had the stretch projected away
+                // (`net-energy` at omega_e h = 2 lost 74 %).
+                Vec3 end;
+                wanted_[i] = threadRowEndStretch(a, b, r, h_, end) > kFlipSpeed * h_;
+            } else {
+                wanted_[i] = active_[i] ? pulls || r.impulse / r.mass <= kFlipSpeed
+                                        : springRowSpeed(a, b, r) + r.bias > kFlipSpeed;
+            }
             changed = changed || wanted_[i] != active_[i];
         }
         for (std::size_t i = elementCount_; i < n; ++i)

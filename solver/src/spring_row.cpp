@@ -138,9 +138,15 @@ void implicitEulerThreadRow(const SolverBody& a, const SolverBody& b, SpringRow&
     row.bias = row.stiffness * (row.length - row.restLength) / resistance;
 }
 
+Real threadRowEndStretch(const SolverBody& a, const SolverBody& b, const SpringRow& row, Real h,
+                         Vec3& endSpan) {
+    endSpan = row.span + h * anchorSpeed(a, b, row);
+    return endSpan.norm() - row.restLength;
+}
+
 bool threadRowStale(const SolverBody& a, const SolverBody& b, const SpringRow& row, Real h,
                     Vec3& endSpan) {
-    endSpan = row.span + h * anchorSpeed(a, b, row);
+    threadRowEndStretch(a, b, row, h, endSpan);
     const Vec3 mid = row.span + endSpan;
     const Real midLength = mid.norm();
     if (!(midLength > kMinimumLength))

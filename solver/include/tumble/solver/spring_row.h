@@ -71,13 +71,14 @@
 /// The first guess solves the thread alone (threadStretchAlone: a scalar root); the block's
 /// active-set rounds linearise a thread again where the solved span misses the model by more
 /// than 1 % or turns m by more than 0.01 rad, and a thread still unsettled for the last round
-/// takes implicit Euler for the step (dissipative, never gaining). In 1D the converged scheme
-/// returns a bounce's and a release's speed exactly at every omega h (0.3 ... 100). Limits,
-/// measured: above (omega h)^2 ~ 100 the rounds do not settle a tumbling net (`net-energy` at
-/// omega_e h = 10 grew without bound, with the Euler fallback 28x at 20), so the stiffest keep
-/// the damped weights; on resolved threads the midpoint's phase error (twice leapfrog's) made
-/// the net-10 sweep's error at 1/240 0.0209 m against the peers' 0.0195 (Fox-Goodwin's 0.0063),
-/// so they keep the weights above.
+/// takes implicit Euler for the step (dissipative, never gaining). A thread slack at the start
+/// takes load where its solved end is stretched (D > 0 there), not where its model pulls. In 1D the
+/// converged scheme returns a bounce's and a release's speed exactly at every omega h (0.3 ...
+/// 100). Limits, measured: above (omega h)^2 ~ 100 the rounds do not settle a tumbling net
+/// (`net-energy` at omega_e h = 10 grew without bound, with the Euler fallback 28x at 20), so the
+/// stiffest keep the damped weights; on resolved threads the midpoint's phase error (twice
+/// leapfrog's) made the net-10 sweep's error at 1/240 0.0209 m against the peers' 0.0195
+/// (Fox-Goodwin's 0.0063), so they keep the weights above.
 ///
 /// Deterministic: rows are solved in array order.
 
@@ -156,6 +157,11 @@ void prepareSpringRow(const SolverBody& a, const SolverBody& b, SpringRow& row, 
 /// (m), and whether its linear model is off there by more than the tolerance.
 bool threadRowStale(const SolverBody& a, const SolverBody& b, const SpringRow& row, Real h,
                     Vec3& endSpan);
+
+/// A discrete-gradient thread row's stretch at the step's end from the bodies' velocities (m),
+/// and that end's anchor span.
+Real threadRowEndStretch(const SolverBody& a, const SolverBody& b, const SpringRow& row, Real h,
+                         Vec3& endSpan);
 
 /// A discrete-gradient thread row whose linearisation did not settle, made an implicit Euler row
 /// on its start-of-step line for the rest of the step (its carried half stays applied).
