@@ -348,6 +348,11 @@ struct CheckpointAccess {
             fields(a, e.onA, e.onB, e.feature, e.count, e.solve);
         });
         fields(a, anchors.solve_);
+        // The thread contacts' warm start (thread_contacts.h): indices only compared, never used
+        // to index, so a corrupt entry costs one step's warm start, nothing more.
+        sequence(a, w.solve.threadContacts_.cache_, [&](ThreadContacts::Cached& c) {
+            fields(a, c.spring, c.slot, c.t, c.normal, c.normalImpulse, c.tangentImpulse);
+        });
         SpringStore& s = w.springs;
         fields(a, s.defs, s.state, s.previousState, s.implicitCount, s.contactCount);
         io(a, s.pool_);

@@ -140,6 +140,7 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
 
     const SolverStats stats = solver_.solve(solverBodies_, constraints, pseudo_, context.h,
                                             settings, springRows_, jointRows_, threadRows);
+    threadContacts_.store();
     const bool anchored =
         settings.frictionAnchors && settings.stabilisation == Stabilisation::SplitImpulse;
     if (anchored)

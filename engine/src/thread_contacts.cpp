@@ -5,6 +5,7 @@
 #include "solve_stage.h"
 #include "springs.h"
 #include "tumble/collision/narrowphase.h"
+#include "tumble/solver/contact_solver.h"
 
 namespace tumble {
 namespace {
@@ -35,6 +36,9 @@ std::span<SegmentContactRow> ThreadContacts::build(const SpringStore& springs,
                                                    const ContactManager& contacts,
                                                    const StepContext& context) {
     rows_.clear();
+    keys_.clear();
+    lent_.assign(cache_.size(), 0);
+    cursor_ = 0;
     if (springs.contactCount == 0)
         return {};
     for (std::uint32_t i = 0; i < springs.count(); ++i) {
@@ -116,8 +120,48 @@ void ThreadContacts::collideThread(std::uint32_t index, const SpringStore& sprin
                 row.normal = -manifold.normal;  // the manifold's runs from the capsule to S
                 row.separation = point.separation;
                 row.friction = mixFriction(def.contactFriction, shape.def.material.friction);
+                keys_.push_back(Cached{.spring = index, .slot = slot});
+                warmStart(row, index, slot, length, def.contactRadius);
             }
         }
+    }
+}
+
+void ThreadContacts::warmStart(SegmentContactRow& row, std::uint32_t spring, std::uint32_t slot,
+                               Real length, Real radius) {
+    while (cursor_ < cache_.size() && cache_[cursor_].spring < spring)
+        ++cursor_;
+    constexpr Real kSameNormal = 0.9;  // cos ~25 degrees
+    const Real window = radius / length;
+    std::size_t best = cache_.size();
+    for (std::size_t k = cursor_; k < cache_.size() && cache_[k].spring == spring; ++k) {
+        const Cached& old = cache_[k];
+        if (old.slot != slot || lent_[k] != 0 || old.normal.dot(row.normal) < kSameNormal ||
+            std::abs(old.t - row.t) > window)
+            continue;
+        if (best == cache_.size() || std::abs(old.t - row.t) < std::abs(cache_[best].t - row.t))
+            best = k;
+    }
+    if (best == cache_.size())
+        return;
+    lent_[best] = 1;
+    const Cached& old = cache_[best];
+    row.normalImpulse = old.normalImpulse;
+    const std::array<Vec3, 2> tangents = frictionBasis(row.normal);
+    row.tangentImpulse = {old.tangentImpulse.dot(tangents[0]), old.tangentImpulse.dot(tangents[1])};
+}
+
+void ThreadContacts::store() {
+    cache_.resize(rows_.size());
+    for (std::size_t k = 0; k < rows_.size(); ++k) {
+        const SegmentContactRow& row = rows_[k];
+        cache_[k] = Cached{
+            keys_[k].spring,
+            keys_[k].slot,
+            row.t,
+            row.normal,
+            row.normalImpulse,
+            row.tangentImpulse[0] * row.tangents[0] + row.tangentImpulse[1] * row.tangents[1]};
     }
 }
 

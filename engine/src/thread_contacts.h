@@ -9,12 +9,16 @@
 /// each step from the springs: the segment's box (grown by the radius and the speculative
 /// margin) is queried in the broadphase and the capsule collided with every static or kinematic
 /// shape it meets, through the ordinary narrowphase. Where a node has shapes of its own, the
-/// capsule starts a radius away from it: what lies nearer is the node's own contacts'. Rows
-/// start cold every step (no state: checkpoints need only the springs' definitions). Carrying
-/// impulses by (spring, shape, manifold, feature id), as the contacts do, was tried: on
-/// `dustbin-mesh` the net then kept vibrating harder (median node speed 0.60 m/s after 2 s
-/// against 0.19) and gained elastic energy (5.8 J against 0.7). The contacts are not reported,
-/// woken on or united into islands (static and kinematic bodies join none).
+/// capsule starts a radius away from it: what lies nearer is the node's own contacts'.
+///
+/// Rows are warm started as the contacts are: each takes the impulses the previous step's
+/// nearest row of the same spring and shape ended with (its point within a contact radius along
+/// the thread, its normal within ~25 degrees; each old row lends once). Cold rows were why a
+/// net draped over a box's edge never came to rest: ten sweeps from zero against the exactly
+/// solved threads left the rows short every step, the relax sweeps kept changing the velocities
+/// (pseudo-velocities of 2 cm/s on resting nodes) and the net flapped at a median 5 mm/s. The
+/// cache is checkpoint state. The contacts are not reported, woken on or united into islands
+/// (static and kinematic bodies join none).
 ///
 /// Deterministic: springs in dense order, each one's shapes in slot order. A warm step
 /// allocates nothing (the arrays only grow).
@@ -40,8 +44,21 @@ public:
     std::span<SegmentContactRow> build(const SpringStore& springs, const BodyStore& bodies,
                                        const ShapeStore& shapes, const ContactManager& contacts,
                                        const StepContext& context);
+    /// Keeps the solved rows' impulses for the next step's warm start.
+    void store();
+
+    /// A solved row as the next step finds it: its spring and shape, where, and its impulses.
+    struct Cached {
+        std::uint32_t spring = 0;  ///< dense index
+        std::uint32_t slot = 0;    ///< shape slot
+        Real t = 0;
+        Vec3 normal = Vec3::UnitZ();
+        Real normalImpulse = 0;              ///< (N s)
+        Vec3 tangentImpulse = Vec3::Zero();  ///< world (N s)
+    };
 
 private:
+    friend struct CheckpointAccess;  ///< checkpoint.cpp saves and restores the cache
     /// Static and kinematic shapes whose tight box meets `box`, in slot order, into shapes_.
     void candidates(const Aabb& box, const BodyStore& bodies, const ShapeStore& shapes,
                     const ContactManager& contacts);
@@ -50,7 +67,15 @@ private:
     void collideThread(std::uint32_t index, const SpringStore& springs, const BodyStore& bodies,
                        const ShapeStore& shapes, const ContactManager& contacts, Real h);
 
+    /// Lends `row` the impulses of the nearest cached row of its spring and shape.
+    void warmStart(SegmentContactRow& row, std::uint32_t spring, std::uint32_t slot, Real length,
+                   Real radius);
+
     std::vector<SegmentContactRow> rows_;
+    std::vector<Cached> keys_;           ///< rows_' springs and shapes (the rest filled by store())
+    std::vector<Cached> cache_;          ///< the previous step's solved rows, by spring then slot
+    std::vector<std::uint8_t> lent_;     ///< scratch: cache_ entries already lent this step
+    std::size_t cursor_ = 0;             ///< scratch: first cache_ entry of the spring being built
     std::vector<std::uint32_t> shapes_;  ///< scratch: candidate shape slots of one thread
     ManifoldSet manifolds_;              ///< scratch
 };

@@ -130,11 +130,10 @@ class ThreadContact : public ::testing::TestWithParam<Wall> {};
 
 TEST_P(ThreadContact, TautThreadHangsOnTheWallWithANodeOnEitherSide) {
     // Tolerances, written before measuring: the segment never sinks into the top by more than
-    // the slop + 1 mm; the nodes end on either side of the wall, at rest (1 mm/s; measured as 1 mm
-    // over the last second), the thread on the top (its centre line kRadius above it, within the
-    // slop); the total energy never grows (1e-9 J of rounding); the vertical contact impulse of a
-    // step -- from the nodes' momentum change, in which the thread's own impulses cancel -- is
-    // their weight times h within 1 %.
+    // the slop + 1 mm; the nodes end on either side of the wall, at rest (1 mm/s), the thread on
+    // the top (its centre line kRadius above it, within the slop); the total energy never grows
+    // (1e-9 J of rounding); the vertical contact impulse of a step -- from the nodes' momentum
+    // change, in which the thread's own impulses cancel -- is their weight times h within 1 %.
     Drop d;
     build(d, GetParam(), kRadius);
     World& world = d.scene.world;
@@ -142,13 +141,10 @@ TEST_P(ThreadContact, TautThreadHangsOnTheWallWithANodeOnEitherSide) {
     const Real slop = world.settings().solver.slop;
     const Real start = energy(world, d.a, d.b);
     Real peak = start;
-    std::array<Vec3, 2> settled{Vec3::Zero(), Vec3::Zero()};
     for (int step = 0; step < 180; ++step) {
         ASSERT_TRUE(world.step().ok());
         EXPECT_GT(lowestOverTheWall(world, d.a, d.b, halfWidth), -(slop + 1e-3)) << step;
         peak = std::max(peak, energy(world, d.a, d.b));
-        if (step == 119)
-            settled = {world.position(d.a), world.position(d.b)};
     }
     EXPECT_LE(peak, start + 1e-9);
     const Vec3 pA = world.position(d.a), pB = world.position(d.b);
@@ -156,11 +152,11 @@ TEST_P(ThreadContact, TautThreadHangsOnTheWallWithANodeOnEitherSide) {
     EXPECT_GT(pB.x(), 0.2);
     EXPECT_NEAR(lowestOverTheWall(world, d.a, d.b, halfWidth), kRadius, slop);
     const Real v0 = world.linearVelocity(d.a).z() + world.linearVelocity(d.b).z();
-    // At rest: moved less than 1 mm over the last second. (The box's reported velocity is not
-    // zero: -6.4 mm/s downwards at every step while the position stands still to 1e-5 m, the
-    // speculative gap of the box's points; the mesh's is zero.)
-    EXPECT_LT((world.position(d.a) - settled[0]).norm(), 1e-3);
-    EXPECT_LT((world.position(d.b) - settled[1]).norm(), 1e-3);
+    // At rest: both nodes slower than 1 mm/s. (With the rows started cold every step the box's
+    // nodes reported -6.4 mm/s downwards at every step while standing still to 1e-5 m: the
+    // relax sweeps, still converging, kept what the push-out had taken away.)
+    EXPECT_LT(world.linearVelocity(d.a).norm(), 1e-3);
+    EXPECT_LT(world.linearVelocity(d.b).norm(), 1e-3);
     ASSERT_TRUE(world.step().ok());
     const Real v1 = world.linearVelocity(d.a).z() + world.linearVelocity(d.b).z();
     const Real support = kNodeMass * (v1 - v0) + 2 * kNodeMass * kGravity * kH;
