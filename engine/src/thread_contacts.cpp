@@ -48,13 +48,14 @@ std::span<SegmentContactRow> ThreadContacts::build(const SpringStore& springs,
     return rows_;
 }
 
-void ThreadContacts::candidates(const Aabb& box, const BodyStore& bodies, const ShapeStore& shapes,
-                                const ContactManager& contacts) {
+void ThreadContacts::candidates(const Aabb& box, bool planes, const BodyStore& bodies,
+                                const ShapeStore& shapes, const ContactManager& contacts) {
     shapes_.clear();
     contacts.broadphase().query(box, [&](std::uint32_t proxy) {
         const std::uint32_t slot = contacts.shapeOfProxy(proxy);
         const ShapeRecord& shape = shapes.records[slot];
         if (bodies.info[bodies.indexOf(shape.body)].type != BodyType::Dynamic &&
+            (planes || typeOf(shape.def.geometry) != ShapeType::HalfSpace) &&
             shape.bounds.overlaps(box))
             shapes_.push_back(slot);
     });
@@ -77,14 +78,6 @@ void ThreadContacts::collideThread(std::uint32_t index, const SpringStore& sprin
                                 world ? 0 : bodies.motion[b].linearVelocity.norm());
     const Real margin = contacts.contactMargin + h * speed;
     const Vec3 grow = Vec3::Constant(def.contactRadius + margin);
-    candidates(Aabb{Vec3(pA.cwiseMin(pB) - grow), Vec3(pA.cwiseMax(pB) + grow)}, bodies, shapes,
-               contacts);
-    if (shapes_.empty())
-        return;
-    const Vec3 d = pB - pA;
-    const Real length = d.norm();
-    if (!(length > 0))
-        return;  // the nodes' own contacts, if any, are all there is
     // A node with shapes of its own touches with them what lies within the radius of its
     // centre: the capsule starts a radius further along. Dropping the capsule's points near
     // such a node instead either kept the cap's points, duplicating the node's (t off 0 by the
@@ -93,6 +86,18 @@ void ThreadContacts::collideThread(std::uint32_t index, const SpringStore& sprin
     const Real trimA = bodies.info[a].firstShape != BodyInfo::kNoShape ? def.contactRadius : 0;
     const Real trimB =
         !world && bodies.info[b].firstShape != BodyInfo::kNoShape ? def.contactRadius : 0;
+    // Against a plane the depth is linear along the segment, deepest at an end: where both
+    // ends are such nodes, the capsule could only repeat their contacts (a net lying on the
+    // ground had a row for every thread).
+    const bool planes = trimA == 0 || trimB == 0;
+    candidates(Aabb{Vec3(pA.cwiseMin(pB) - grow), Vec3(pA.cwiseMax(pB) + grow)}, planes, bodies,
+               shapes, contacts);
+    if (shapes_.empty())
+        return;
+    const Vec3 d = pB - pA;
+    const Real length = d.norm();
+    if (!(length > 0))
+        return;  // the nodes' own contacts, if any, are all there is
     const Real core = length - trimA - trimB;
     if (!(core > 0))
         return;

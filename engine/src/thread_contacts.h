@@ -59,8 +59,9 @@ public:
 
 private:
     friend struct CheckpointAccess;  ///< checkpoint.cpp saves and restores the cache
-    /// Static and kinematic shapes whose tight box meets `box`, in slot order, into shapes_.
-    void candidates(const Aabb& box, const BodyStore& bodies, const ShapeStore& shapes,
+    /// Static and kinematic shapes whose tight box meets `box`, in slot order, into shapes_;
+    /// half-spaces only when `planes`.
+    void candidates(const Aabb& box, bool planes, const BodyStore& bodies, const ShapeStore& shapes,
                     const ContactManager& contacts);
     /// The rows of spring `index` (with an awake dynamic end) against the shapes it meets,
     /// appended to rows_.
