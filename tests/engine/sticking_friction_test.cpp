@@ -155,6 +155,8 @@ TEST(StickingFriction, CubeOnATurningPlatformStaysOnItsSpotUntilOmegaSquaredREqu
     ASSERT_TRUE(r.anchors);
     const Real onset = slipOmega(r, r.radius);
     const Outcome out = ride(r, 0.99 * onset);
+    std::printf("within %.2g m of its spot; slips at omega = %.4f (analytic %.4f)\n",
+                out.worstDrift, out.slipOmega, onset);
     EXPECT_LT(out.worstDrift, 1e-3);
     EXPECT_NEAR(out.slipOmega / onset, 1, 0.03);
 }
