@@ -162,10 +162,10 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
 
     for (std::size_t j = 0; j < constraints.size(); ++j) {
         ContactConstraint& c = constraints[j];
-        if (anchored) {  // equilibrated before release reads the manifold's friction share
+        if (anchored)  // off: soak.pile-sleeps never slept with it (see docs)
             equilibrateFriction(c);
+        if (anchored)
             anchors_.release(constraintContact_[j], c);
-        }
         Contact& contact = contacts.contact(constraintContact_[j]);
         contact.angularImpulse = c.angularImpulse;
         for (int i = 0; i < c.pointCount; ++i) {
