@@ -130,7 +130,7 @@ std::vector<Ride> randomRides(bool anchors) {
     return rides;
 }
 
-// (Now with anchors: equilibrateFriction runs only with them, see solve_stage.cpp.) The cube
+// (With anchors: equilibrateFriction runs only with them, see solve_stage.cpp.) The cube
 // radius it has reached is mu g, and while it sticks no point's friction uses more of its disc
 // than half or the manifold's net friction needs (before the fix: points on their discs at a
 // fifth of the net limit).
@@ -145,14 +145,17 @@ TEST(StickingFriction, BoxOnATurningPlatformSlipsWhenItNeedsMuG) {
     }
 }
 
-// The reproduction: r = 1 m, omega = 0.05 t, mu = 0.4, h = 1/60, anchors on. The cube
+// The reproduction: r = 1 m, omega = 0.05 t, mu = 0.4, h = 1/60, anchors on (off by
+// default: docs/ARCHITECTURE.md, "Friction anchors", says which tests fail with them on). The cube
 // stays within 1 mm of its spot until the friction it needs is 0.98 of mu g (then the manifold
-// reaches 0.99 of its limit and lets its anchors go), and slips within 3 % of
-// omega = sqrt(mu g / r) = 1.98. Without anchors: 0.32 m outward by then, and it left at 1.78.
+// reaches 0.99 of its limit and lets its anchors go), and slips within 3 % of omega = sqrt(mu g /
+// r) = 1.98. Without anchors: 0.32 m outward by then, and it left at 1.78.
 TEST(StickingFriction, CubeOnATurningPlatformStaysOnItsSpotUntilOmegaSquaredREqualsMuG) {
     const Ride r{.anchors = true};
     const Real onset = slipOmega(r, r.radius);
     const Outcome out = ride(r, 0.99 * onset);
+    std::printf("within %.2g m of its spot; slips at omega = %.4f (analytic %.4f)\n",
+                out.worstDrift, out.slipOmega, onset);
     EXPECT_LT(out.worstDrift, 1e-3);
     EXPECT_NEAR(out.slipOmega / onset, 1, 0.03);
 }
