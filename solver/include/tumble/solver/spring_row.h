@@ -120,6 +120,8 @@ struct SpringRow {
     Vec3 carried = Vec3::Zero();
     Vec3 span = Vec3::Zero();  ///< anchor B - anchor A at the step's start (m)
     Real linearisedAt = 0;     ///< C1* (m): the end-of-step stretch the row is linearised at
+    /// The block solve's turn rows' impulse on B's anchor (N s), the rest of the new half.
+    Vec3 turn = Vec3::Zero();
 
     // Filled by prepareSpringRows().
     Vec3 angularA = Vec3::Zero();         ///< rA x n (m)
@@ -171,6 +173,12 @@ void implicitEulerThreadRow(const SolverBody& a, const SolverBody& b, SpringRow&
 /// Jacobians, softness, bias and effective mass (its impulse untouched).
 void lineariseThreadRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h,
                         const Vec3& endSpan);
+
+/// A discrete-gradient thread's turn row along `turn.direction` (set, perpendicular to the
+/// thread's): Newton's linearisation of its pull's direction m = (d0 + d1) / (L0 + L1) at the
+/// thread's guessed end span, so it holds no impulse once the guess is right (spring_row.cpp).
+void lineariseThreadTurn(const SolverBody& a, const SolverBody& b, const SpringRow& thread,
+                         SpringRow& turn, Real h);
 
 /// Whether a prepared row's element is one the step does not resolve ((omega h)^2 >= 4): its
 /// scheme damps it, and its turning within the step wants post-stabilisation.
