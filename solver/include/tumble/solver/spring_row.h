@@ -70,11 +70,15 @@
 ///     r = s^2 (h D' + c),  gamma = 2 / (h r),  bias = s (D + D' (c0 - c1*)) / r.
 /// The first guess solves the thread alone (threadStretchAlone: a scalar root); the block's
 /// active-set rounds linearise a thread again where the solved span misses the model by more
-/// than 1 % or turns m by more than 0.01 rad, and a thread still unsettled for the last round
-/// takes implicit Euler for the step (dissipative, never gaining). A thread slack at the start
-/// takes load where its solved end is stretched (D > 0 there), not where its model pulls. In 1D the
-/// converged scheme returns a bounce's and a release's speed exactly at every omega h (0.3 ...
-/// 100). Limits, measured: above (omega h)^2 ~ 100 the rounds do not settle a tumbling net
+/// than 0.1 % or turns m by more than 0.001 rad, and a thread still unsettled for the last round
+/// takes implicit Euler for the step. m's turn is in Newton's step too: two turn rows along t
+/// perpendicular to m* (lineariseThreadTurn) hold -(h/2) D (d1 - d1*) . t / (L0 + L1), nothing
+/// once the guess is right, and their impulse is part of the carried half. Left to the rounds
+/// (a fixed point that contracts only while ~(omega_e h)^2 C / L is small) a tumbling net's
+/// threads fell back to implicit Euler hundreds of times at omega_e h = 5. A thread slack at the
+/// start takes load where its solved end is stretched (D > 0 there), not where its model pulls. In
+/// 1D the converged scheme returns a bounce's and a release's speed exactly at every omega h (0.3
+/// ... 100). Limits, measured: above (omega h)^2 ~ 100 the rounds do not settle a tumbling net
 /// (`net-energy` at omega_e h = 10 grew without bound, with the Euler fallback 28x at 20), so the
 /// stiffest keep the damped weights; on resolved threads the midpoint's phase error (twice
 /// leapfrog's) made the net-10 sweep's error at 1/240 0.0209 m against the peers' 0.0195
