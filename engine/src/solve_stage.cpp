@@ -158,7 +158,7 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
                                  : -(row.impulse + row.knownImpulse) * context.inverseH;
         springs.state[rowSpring_[j]] = {
             tension, row.tensionOnly && !(tension > 0),
-            row.discreteGradient ? Vec3(row.impulse * row.direction) : Vec3::Zero()};
+            row.discreteGradient ? Vec3(row.impulse * row.direction + row.turn) : Vec3::Zero()};
     }
 
     for (std::size_t j = 0; j < constraints.size(); ++j) {

@@ -129,7 +129,7 @@ SpringState World::springState(SpringId id) const {
     const Impl& w = *impl_;
     const std::uint32_t index = w.springs.indexOf(id);
     const SpringStepState& s = w.springs.state[index];
-    return {springLength(w.springs, w.bodies, index), s.tension, s.slack};
+    return {springLength(w.springs, w.bodies, index), s.tension, s.slack, s.carried};
 }
 
 Real World::springPotentialEnergy() const {

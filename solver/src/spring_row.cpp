@@ -52,9 +52,12 @@ SchemeWeights catchWeights(Real spectralRadius, Real squared) {
 constexpr Real kCatchFloor = 1e-3;
 // A discrete-gradient row whose linear model misses the gradient at the solved stretch by more
 // than this share of it is linearised there again and the block solved again.
-constexpr Real kGradientTolerance = 1e-2;
+constexpr Real kGradientTolerance = 1e-3;
 // ... or whose direction (d0 + d1) / |d0 + d1| moved by more than this (rad).
-constexpr Real kDirectionTolerance = 1e-2;
+constexpr Real kDirectionTolerance = 1e-3;
+// A turn row's stiffness where its thread does not pull, per unit of the thread's (N/m): it
+// then holds almost nothing, and its row stays in the factorisation's pattern.
+constexpr Real kInertTurn = 1e-6;
 // Newton (or bisection) steps of a thread's first guess alone (threadStretchAlone).
 constexpr int kLocalIterations = 12;
 
@@ -201,6 +204,27 @@ void lineariseThreadRow(const SolverBody& a, const SolverBody& b, SpringRow& row
     row.softness = 2 / (h * resistance);
     row.mass = 1 / (inverseMass + row.softness);
     row.bias = scale * (g.value + g.slope * (c0 - c1)) / resistance;
+}
+
+// The turn of m with the end span, -D (d1 - d1*)_t / (L0 + L1) along t, t . m* = 0: with
+// t . d1* = -t . d0, the half impulse is lambda = -(h / 2) K_t (2 t . d0 + h w_t), w_t = J_t v1.
+void lineariseThreadTurn(const SolverBody& a, const SolverBody& b, const SpringRow& thread,
+                         SpringRow& turn, Real h) {
+    const Real inverseMass = setJacobians(a, b, turn);
+    const Real c0 = thread.length - thread.restLength;
+    const Real c1 = thread.linearisedAt;
+    const Real pull =
+        thread.discreteGradient ? threadGradient(thread.stiffness, c0, c1).value : Real(0);
+    turn.stiffness = std::max<Real>(pull / (thread.length + c1 + thread.restLength),
+                                    kInertTurn * thread.stiffness);
+    turn.knownImpulse = 0;
+    if (!(inverseMass > 0) || !(h > 0)) {
+        turn.mass = 0;
+        return;
+    }
+    turn.softness = 2 / (h * h * turn.stiffness);
+    turn.mass = 1 / (inverseMass + turn.softness);
+    turn.bias = 2 * turn.direction.dot(thread.span) / h;
 }
 
 void prepareSpringRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h) {

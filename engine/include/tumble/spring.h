@@ -78,6 +78,10 @@ struct SpringState {
     Real length = 0;     ///< anchor distance at the current poses (m)
     Real tension = 0;    ///< of the last step (N); positive pulls the anchors together
     bool slack = false;  ///< a tension-only element that carried nothing in the last step
+    /// A discrete-gradient thread's half impulse of the last step on anchor B (N s; its negative
+    /// on A), which the next step applies again; zero for other elements. The scheme's velocity
+    /// at the step's end is the step's velocity plus this impulse's (spring_row.h).
+    Vec3 carried = Vec3::Zero();
 };
 
 /// Aerodynamic drag on a body's centre of mass, applied with the other forces (explicitly):

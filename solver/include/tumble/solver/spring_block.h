@@ -104,6 +104,9 @@ private:
     /// Whether the settled solve's tensions leave a taut element's transverse rows far from
     /// the tension they were built with; if so, undoes the solve and rebuilds them with it.
     bool refreshTransverseRows(std::span<SolverBody> bodies);
+    /// Each discrete-gradient thread's turn rows' impulse into its `turn` (part of the half it
+    /// carries to the next step).
+    void storeTurnImpulses();
     bool samePattern() const;
     void analyse();
     /// The elimination tree, L's pattern and each row's solve order (factor()'s walk, once).

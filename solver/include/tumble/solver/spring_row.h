@@ -70,11 +70,15 @@
 ///     r = s^2 (h D' + c),  gamma = 2 / (h r),  bias = s (D + D' (c0 - c1*)) / r.
 /// The first guess solves the thread alone (threadStretchAlone: a scalar root); the block's
 /// active-set rounds linearise a thread again where the solved span misses the model by more
-/// than 1 % or turns m by more than 0.01 rad, and a thread still unsettled for the last round
-/// takes implicit Euler for the step (dissipative, never gaining). A thread slack at the start
-/// takes load where its solved end is stretched (D > 0 there), not where its model pulls. In 1D the
-/// converged scheme returns a bounce's and a release's speed exactly at every omega h (0.3 ...
-/// 100). Limits, measured: above (omega h)^2 ~ 100 the rounds do not settle a tumbling net
+/// than 0.1 % or turns m by more than 0.001 rad, and a thread still unsettled for the last round
+/// takes implicit Euler for the step. m's turn is in Newton's step too: two turn rows along t
+/// perpendicular to m* (lineariseThreadTurn) hold -(h/2) D (d1 - d1*) . t / (L0 + L1), nothing
+/// once the guess is right, and their impulse is part of the carried half. Left to the rounds
+/// (a fixed point that contracts only while ~(omega_e h)^2 C / L is small) a tumbling net's
+/// threads fell back to implicit Euler hundreds of times at omega_e h = 5. A thread slack at the
+/// start takes load where its solved end is stretched (D > 0 there), not where its model pulls. In
+/// 1D the converged scheme returns a bounce's and a release's speed exactly at every omega h (0.3
+/// ... 100). Limits, measured: above (omega h)^2 ~ 100 the rounds do not settle a tumbling net
 /// (`net-energy` at omega_e h = 10 grew without bound, with the Euler fallback 28x at 20), so the
 /// stiffest keep the damped weights; on resolved threads the midpoint's phase error (twice
 /// leapfrog's) made the net-10 sweep's error at 1/240 0.0209 m against the peers' 0.0195
@@ -120,6 +124,8 @@ struct SpringRow {
     Vec3 carried = Vec3::Zero();
     Vec3 span = Vec3::Zero();  ///< anchor B - anchor A at the step's start (m)
     Real linearisedAt = 0;     ///< C1* (m): the end-of-step stretch the row is linearised at
+    /// The block solve's turn rows' impulse on B's anchor (N s), the rest of the new half.
+    Vec3 turn = Vec3::Zero();
 
     // Filled by prepareSpringRows().
     Vec3 angularA = Vec3::Zero();         ///< rA x n (m)
@@ -171,6 +177,12 @@ void implicitEulerThreadRow(const SolverBody& a, const SolverBody& b, SpringRow&
 /// Jacobians, softness, bias and effective mass (its impulse untouched).
 void lineariseThreadRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h,
                         const Vec3& endSpan);
+
+/// A discrete-gradient thread's turn row along `turn.direction` (set, perpendicular to the
+/// thread's): Newton's linearisation of its pull's direction m = (d0 + d1) / (L0 + L1) at the
+/// thread's guessed end span, so it holds no impulse once the guess is right (spring_row.cpp).
+void lineariseThreadTurn(const SolverBody& a, const SolverBody& b, const SpringRow& thread,
+                         SpringRow& turn, Real h);
 
 /// Whether a prepared row's element is one the step does not resolve ((omega h)^2 >= 4): its
 /// scheme damps it, and its turning within the step wants post-stabilisation.
