@@ -46,41 +46,51 @@ void ContactRows::colour(std::span<const SolverBody> bodies,
         colours = std::max(colours, colour + 1);
     }
     colourCount_ = static_cast<int>(colours);
-    // Constraints sorted by colour, in constraint order within one (a counting sort).
-    colourBegin_.assign(colours + 1, 0);
-    for (const std::uint32_t colour : constraintColour_)
-        ++colourBegin_[colour + 1];
-    for (std::size_t k = 1; k < colourBegin_.size(); ++k)
-        colourBegin_[k] += colourBegin_[k - 1];
-    colourNext_.assign(colourBegin_.begin(), colourBegin_.end() - 1);
+    // Constraints sorted by colour and, within one, by point count, in constraint order within
+    // each group (a counting sort). A colour's manifolds share no moving body, so their order
+    // within it does not change a bit; grouped by count, a bundle of one-point manifolds (most of
+    // a pile of spheres and capsules) sweeps one point slot, not the four of its largest lane.
+    const auto group = [&](std::size_t i) {
+        const auto count = static_cast<std::uint32_t>(std::clamp(constraints[i].pointCount, 0, 4));
+        return constraintColour_[i] * kGroupsPerColour + count;
+    };
+    groupBegin_.assign(std::size_t{colours} * kGroupsPerColour + 1, 0);
+    for (std::size_t i = 0; i < constraints.size(); ++i)
+        ++groupBegin_[group(i) + 1];
+    for (std::size_t k = 1; k < groupBegin_.size(); ++k)
+        groupBegin_[k] += groupBegin_[k - 1];
+    groupNext_.assign(groupBegin_.begin(), groupBegin_.end() - 1);
     order_.resize(constraints.size());
     for (std::size_t i = 0; i < constraints.size(); ++i)
-        order_[colourNext_[constraintColour_[i]]++] = static_cast<std::uint32_t>(i);
+        order_[groupNext_[group(i)]++] = static_cast<std::uint32_t>(i);
 }
 
 bool ContactRows::build(std::span<const SolverBody> bodies,
                         std::span<const ContactConstraint> constraints,
                         const SolverSettings& settings, Real inverseH) {
-    // A lane reserves four points: manifolds of one or two points (a pile of spheres and
-    // capsules, 1.2 a manifold) stream mostly padding, and the scalar sweep's compact rows,
-    // which give the same bits, ran pile-1000 at 0.93x the rows' time.
+    colour(bodies, constraints);
+    // A bundle sweeps as many point slots as its largest manifold has points. Where the colours
+    // leave the lanes or the slots mostly empty (a lone column), the scalar sweep's compact rows
+    // give the same bits for less work.
     std::size_t points = 0;
     for (const ContactConstraint& c : constraints)
         points += static_cast<std::size_t>(c.pointCount);
-    if (points * kMinimumFillDenominator < constraints.size() * kPointsPerLane)
-        return false;
-    colour(bodies, constraints);
     std::size_t bundleCount = 0;
-    for (int colour = 0; colour < colourCount_; ++colour)
-        bundleCount += (colourBegin_[colour + 1] - colourBegin_[colour] + kWidth - 1) / kWidth;
-    if (constraints.size() * kMinimumFillDenominator < bundleCount * kWidth)
+    std::size_t slots = 0;
+    for (std::size_t g = 0; g + 1 < groupBegin_.size(); ++g) {
+        const std::size_t bundles = (groupBegin_[g + 1] - groupBegin_[g] + kWidth - 1) / kWidth;
+        bundleCount += bundles;
+        slots += bundles * kWidth * (g % kGroupsPerColour);
+    }
+    if (constraints.size() * kMinimumFillDenominator < bundleCount * kWidth ||
+        points * kMinimumFillDenominator < slots)
         return false;
     bundles_.resize(bundleCount);
     const auto dummy = static_cast<std::uint32_t>(bodies.size());
     std::size_t next = 0;
-    for (int colour = 0; colour < colourCount_; ++colour) {
-        const std::uint32_t end = colourBegin_[colour + 1];
-        for (std::uint32_t start = colourBegin_[colour]; start < end; start += kWidth) {
+    for (std::size_t g = 0; g + 1 < groupBegin_.size(); ++g) {
+        const std::uint32_t end = groupBegin_[g + 1];
+        for (std::uint32_t start = groupBegin_[g]; start < end; start += kWidth) {
             Bundle& bundle = bundles_[next++];
             bundle = Bundle{};
             bundle.bodyA.fill(dummy);
@@ -144,7 +154,10 @@ void ContactRows::fill(Bundle& bundle, int lane, const ContactConstraint& c, std
         for (int k = 0; k < 4; ++k) {
             setLane(q.tangentBlock[k], lane, p.tangent.block(k / 2, k % 2));
             setLane(q.tangentInverse[k], lane, p.tangent.inverse(k / 2, k % 2));
+            setLane(q.tangentAxes[k], lane, p.tangent.axes(k / 2, k % 2));
         }
+        setLane(q.tangentMoments[0], lane, p.tangent.moments(0));
+        setLane(q.tangentMoments[1], lane, p.tangent.moments(1));
         setLane(q.normalMass, lane, p.normalMass);
         setLane(q.normalImpulse, lane, p.normalImpulse);
         const bool speculative = p.separation > 0;
@@ -173,8 +186,8 @@ void ContactRows::readGroupImpulses(std::span<const ContactConstraint> constrain
 
 void ContactRows::dropBounceCorrections() {
     for (Bundle& bundle : bundles_) {
-        for (Point& q : bundle.point)
-            q.correction = Lane{};
+        for (int i = 0; i < bundle.maxPoints; ++i)
+            bundle.point[i].correction = Lane{};
     }
 }
 

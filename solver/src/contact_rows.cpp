@@ -10,8 +10,6 @@
 namespace tumble {
 namespace {
 
-using Vec2 = Eigen::Matrix<Real, 2, 1>;
-
 [[gnu::always_inline]] inline Lane splat(Real x) {
     return Lane{x, x, x, x};
 }
@@ -88,6 +86,52 @@ using Vec2 = Eigen::Matrix<Real, 2, 1>;
     }
 }
 
+[[gnu::always_inline]] inline Lane squareRoot(Lane x) {
+    Lane root;
+    for (int lane = 0; lane < 4; ++lane)
+        root[lane] = std::sqrt(x[lane]);
+    return root;
+}
+
+// solveDisc's sliding case (contact_solver.cpp) in the lanes of `rim`, from b = K old - vt: the
+// same operations in the same order per lane, each lane stopping where solveDisc stops, so the
+// same bits. A pile's sliding points spent a fifth of its step in that Newton iteration, one
+// lane after another.
+template <class Point>
+[[gnu::always_inline]] inline void solveRimLanes(const Point& q, LaneMask rim, Lane b0, Lane b1,
+                                                 Lane radius, Lane& solved0, Lane& solved1) {
+    const Lane* axes = q.tangentAxes;
+    const Lane m0 = q.tangentMoments[0];
+    const Lane m1 = q.tangentMoments[1];
+    const Lane c0 = axes[0] * b0 + axes[2] * b1;  // axes' b
+    const Lane c1 = axes[1] * b0 + axes[3] * b1;
+    const Lane largestMoment = select(greater(m1, m0), m1, m0);
+    const Lane one = splat(1);
+    Lane nu{};
+    LaneMask going = rim;
+    for (int iteration = 0; iteration < 20 && any(going); ++iteration) {
+        const Lane d0 = m0 + nu;
+        const Lane d1 = m1 + nu;
+        const Lane q0 = c0 / d0;
+        const Lane q1 = c1 / d1;
+        const Lane length = squareRoot(q0 * q0 + q1 * q1);
+        const Lane derivative = ((q0 * q0) / d0 + (q1 * q1) / d1) / ((length * length) * length);
+        const Lane step = (one / length - one / radius) / derivative;
+        const Lane next = positivePart(nu - step);
+        nu = select(going, next, nu);
+        // solveDisc stops once |step| <= tol: a NaN step goes on there, and here.
+        going &=
+            ~reinterpret_cast<LaneMask>(absolute(step) <= splat(1e-12) * (next + largestMoment));
+    }
+    const Lane q0 = c0 / (m0 + nu);
+    const Lane q1 = c1 / (m1 + nu);
+    const Lane lambda0 = axes[0] * q0 + axes[1] * q1;
+    const Lane lambda1 = axes[2] * q0 + axes[3] * q1;
+    const Lane scale = radius / squareRoot(lambda0 * lambda0 + lambda1 * lambda1);
+    solved0 = select(rim, lambda0 * scale, solved0);
+    solved1 = select(rim, lambda1 * scale, solved1);
+}
+
 }  // namespace
 
 // The lane kernels are compiled twice, for AVX2 and for the x86-64 baseline, the copy chosen
@@ -133,7 +177,7 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
     for (Bundle& bundle : bundles_) {
         Lane v[2][6];
         gather(bundle, v);
-        largestChange = std::max(largestChange, solveFriction(bundle, constraints, settings, v));
+        largestChange = std::max(largestChange, solveFriction(bundle, settings, v));
         if (bundle.angular) {
             scatter(bundle, v);
             for (int lane = 0; lane < bundle.laneCount; ++lane) {
@@ -161,9 +205,7 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
 // The friction of every point, point by point as ContactSolver does, four manifolds at a time.
 // Coupled: the free answer K^-1 (K old - vt) in the lanes, solveDisc for a lane whose answer
 // leaves the disc.
-TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle,
-                                                   std::span<const ContactConstraint> constraints,
-                                                   const SolverSettings& settings,
+TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle, const SolverSettings& settings,
                                                    Lane (&v)[2][6]) const {
     const Lane omega = splat(settings.relaxation);
     const bool coupled = settings.friction == FrictionModel::Coupled;
@@ -193,17 +235,8 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle,
             Lane solved1 = select(positive, inverse[2] * b0 + inverse[3] * b1, Lane{});
             const LaneMask rim =
                 positive & greater(solved0 * solved0 + solved1 * solved1, limit * limit);
-            if (any(rim)) {
-                for (int lane = 0; lane < kWidth; ++lane) {
-                    if (rim[lane] == 0)
-                        continue;
-                    const DiscBlock& disc = constraints[bundle.constraint[lane]].points[i].tangent;
-                    const Vec2 solved = solveDisc(disc, Vec2(old0[lane], old1[lane]),
-                                                  Vec2(vt[0][lane], vt[1][lane]), limit[lane]);
-                    solved0[lane] = solved.x();
-                    solved1[lane] = solved.y();
-                }
-            }
+            if (any(rim))
+                solveRimLanes(q, rim, b0, b1, limit, solved0, solved1);
             next0 = old0 + omega * (solved0 - old0);
             next1 = old1 + omega * (solved1 - old1);
         } else {
@@ -272,9 +305,11 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
     for (int k = 0; k < 3; ++k)
         dv[k] = v[1][k] - v[0][k];
     const Lane normalDv = dot(bundle.normal, dv);
-    Lane old[4];
-    Lane gap[4];  // v_n - target with the current impulses
-    for (int i = 0; i < 4; ++i) {
+    // Slots past maxPoints are empty in every lane (zero impulses, rows and block entries).
+    const int points = bundle.maxPoints;
+    Lane old[4] = {};
+    Lane gap[4] = {};  // v_n - target with the current impulses
+    for (int i = 0; i < points; ++i) {
         const Point& q = bundle.point[i];
         old[i] = q.normalImpulse;
         const Lane target = (q.targetBase + biasH * q.depth) - q.correction;
@@ -282,8 +317,8 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
         gap[i] = select(bundle.hasPoint[i], speed - target, Lane{});
     }
     const Lane* k = bundle.block;
-    Lane c[4];  // the gaps with no normal impulse
-    for (int i = 0; i < 4; ++i)
+    Lane c[4] = {};  // the gaps with no normal impulse
+    for (int i = 0; i < points; ++i)
         c[i] = gap[i] - (((k[4 * i] * old[0] + k[4 * i + 1] * old[1]) + k[4 * i + 2] * old[2]) +
                          k[4 * i + 3] * old[3]);
     LaneMask single{};
@@ -320,8 +355,8 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
     }
     next[0] = select(single, positivePart(old[0] - (omega * bundle.point[0].normalMass) * gap[0]),
                      next[0]);
-    Lane delta[4];
-    for (int i = 0; i < 4; ++i) {
+    Lane delta[4] = {};
+    for (int i = 0; i < points; ++i) {
         delta[i] = select(update, next[i] - old[i], Lane{});
         Point& q = bundle.point[i];
         for (int j = 0; j < 3; ++j) {
@@ -335,7 +370,7 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
     scatter(bundle, v);
     Real largestChange = 0;
     if (settings.tolerance > 0) {
-        for (int i = 0; i < 4; ++i) {
+        for (int i = 0; i < points; ++i) {
             const Lane change =
                 ((k[4 * i] * delta[0] + k[4 * i + 1] * delta[1]) + k[4 * i + 2] * delta[2]) +
                 k[4 * i + 3] * delta[3];
