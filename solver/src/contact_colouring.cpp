@@ -86,13 +86,19 @@ bool ContactRows::build(std::span<const SolverBody> bodies,
         points * kMinimumFillDenominator < slots)
         return false;
     bundles_.resize(bundleCount);
+    points_.resize(slots / kWidth);
     const auto dummy = static_cast<std::uint32_t>(bodies.size());
     std::size_t next = 0;
+    std::uint32_t nextPoint = 0;
     for (std::size_t g = 0; g + 1 < groupBegin_.size(); ++g) {
         const std::uint32_t end = groupBegin_[g + 1];
+        const auto count = static_cast<std::uint32_t>(g % kGroupsPerColour);
         for (std::uint32_t start = groupBegin_[g]; start < end; start += kWidth) {
             Bundle& bundle = bundles_[next++];
             bundle = Bundle{};
+            bundle.firstPoint = nextPoint;
+            std::fill_n(points_.begin() + nextPoint, count, Point{});
+            nextPoint += count;
             bundle.bodyA.fill(dummy);
             bundle.bodyB.fill(dummy);
             for (int k = 0; k < 16; ++k)
@@ -118,7 +124,7 @@ bool ContactRows::build(std::span<const SolverBody> bodies,
 // One manifold into one lane: the constraint's prepared Jacobians, masses and impulses, and its
 // normal target split so that the sweep's bias can enter (normal_block.h, normalTarget).
 void ContactRows::fill(Bundle& bundle, int lane, const ContactConstraint& c, std::uint32_t index,
-                       Real slop, Real inverseH) const {
+                       Real slop, Real inverseH) {
     bundle.bodyA[lane] = c.bodyA;
     bundle.bodyB[lane] = c.bodyB;
     bundle.constraint[lane] = index;
@@ -137,7 +143,7 @@ void ContactRows::fill(Bundle& bundle, int lane, const ContactConstraint& c, std
     }
     for (int i = 0; i < c.pointCount; ++i) {
         const ContactConstraintPoint& p = c.points[i];
-        Point& q = bundle.point[i];
+        Point& q = points_[bundle.firstPoint + i];
         bundle.hasPoint[i][lane] = -1;
         setLanes(q.angularA, lane, p.angularA);
         setLanes(q.angularB, lane, p.angularB);
@@ -179,7 +185,7 @@ void ContactRows::readGroupImpulses(std::span<const ContactConstraint> constrain
                 continue;
             const ContactConstraint& c = constraints[bundle.constraint[lane]];
             for (int i = 0; i < c.pointCount; ++i)
-                bundle.point[i].normalImpulse[lane] = c.points[i].normalImpulse;
+                points_[bundle.firstPoint + i].normalImpulse[lane] = c.points[i].normalImpulse;
         }
     }
 }
@@ -187,7 +193,7 @@ void ContactRows::readGroupImpulses(std::span<const ContactConstraint> constrain
 void ContactRows::dropBounceCorrections() {
     for (Bundle& bundle : bundles_) {
         for (int i = 0; i < bundle.maxPoints; ++i)
-            bundle.point[i].correction = Lane{};
+            points_[bundle.firstPoint + i].correction = Lane{};
     }
 }
 
@@ -196,7 +202,7 @@ void ContactRows::store(std::span<ContactConstraint> constraints) const {
         for (int lane = 0; lane < bundle.laneCount; ++lane) {
             ContactConstraint& c = constraints[bundle.constraint[lane]];
             for (int i = 0; i < c.pointCount; ++i) {
-                const Point& q = bundle.point[i];
+                const Point& q = points_[bundle.firstPoint + i];
                 c.points[i].normalImpulse = q.normalImpulse[lane];
                 c.points[i].tangentImpulse = {q.tangentImpulse[0][lane], q.tangentImpulse[1][lane]};
             }

@@ -206,12 +206,12 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
 // Coupled: the free answer K^-1 (K old - vt) in the lanes, solveDisc for a lane whose answer
 // leaves the disc.
 TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle, const SolverSettings& settings,
-                                                   Lane (&v)[2][6]) const {
+                                                   Lane (&v)[2][6]) {
     const Lane omega = splat(settings.relaxation);
     const bool coupled = settings.friction == FrictionModel::Coupled;
     Real largestChange = 0;
     for (int i = 0; i < bundle.maxPoints; ++i) {
-        Point& q = bundle.point[i];
+        Point& q = points_[bundle.firstPoint + i];
         Lane dv[3];
         for (int k = 0; k < 3; ++k)
             dv[k] = v[1][k] - v[0][k];
@@ -280,7 +280,7 @@ Real ContactRows::solveAngularAlone(Bundle& bundle, int lane, std::span<const So
     b.linearVelocity = Vec3(vb.v[0], vb.v[1], vb.v[2]);
     b.angularVelocity = Vec3(vb.v[3], vb.v[4], vb.v[5]);
     for (int i = 0; i < c.pointCount; ++i)
-        c.points[i].normalImpulse = bundle.point[i].normalImpulse[lane];
+        c.points[i].normalImpulse = points_[bundle.firstPoint + i].normalImpulse[lane];
     const Real change = solveAngularFriction(a, b, c, omega);
     for (int k = 0; k < 3; ++k) {
         va.v[3 + k] = a.angularVelocity[k];
@@ -310,7 +310,7 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
     Lane old[4] = {};
     Lane gap[4] = {};  // v_n - target with the current impulses
     for (int i = 0; i < points; ++i) {
-        const Point& q = bundle.point[i];
+        const Point& q = points_[bundle.firstPoint + i];
         old[i] = q.normalImpulse;
         const Lane target = (q.targetBase + biasH * q.depth) - q.correction;
         const Lane speed = (normalDv + dot(q.angularB, v[1] + 3)) - dot(q.angularA, v[0] + 3);
@@ -353,12 +353,14 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
             next[i] = positivePart(old[i] + omega * (x[i] - old[i]));
         update |= fast & ok;
     }
-    next[0] = select(single, positivePart(old[0] - (omega * bundle.point[0].normalMass) * gap[0]),
-                     next[0]);
+    if (points > 0) {
+        const Lane mass = points_[bundle.firstPoint].normalMass;
+        next[0] = select(single, positivePart(old[0] - (omega * mass) * gap[0]), next[0]);
+    }
     Lane delta[4] = {};
     for (int i = 0; i < points; ++i) {
         delta[i] = select(update, next[i] - old[i], Lane{});
-        Point& q = bundle.point[i];
+        Point& q = points_[bundle.firstPoint + i];
         for (int j = 0; j < 3; ++j) {
             v[0][j] -= (bundle.inverseMassA * delta[i]) * bundle.normal[j];
             v[0][3 + j] -= delta[i] * q.impulseA[j];
@@ -402,7 +404,7 @@ Real ContactRows::solveNormalsAlone(Bundle& bundle, int lane, ContactConstraint&
     b.angularVelocity = Vec3(vb.v[3], vb.v[4], vb.v[5]);
     b.inverseMass = bundle.inverseMassB[lane];
     for (int i = 0; i < c.pointCount; ++i)
-        c.points[i].normalImpulse = bundle.point[i].normalImpulse[lane];
+        c.points[i].normalImpulse = points_[bundle.firstPoint + i].normalImpulse[lane];
     Real change = 0;
     solveManifoldNormals(a, b, c, factor, settings, inverseH, bias, change);
     for (int k = 0; k < 3; ++k) {
@@ -412,7 +414,7 @@ Real ContactRows::solveNormalsAlone(Bundle& bundle, int lane, ContactConstraint&
         vb.v[3 + k] = b.angularVelocity[k];
     }
     for (int i = 0; i < c.pointCount; ++i)
-        bundle.point[i].normalImpulse[lane] = c.points[i].normalImpulse;
+        points_[bundle.firstPoint + i].normalImpulse[lane] = c.points[i].normalImpulse;
     // The factor it cached, embedded in the identity.
     for (int e = 0; e < 16; ++e)
         bundle.factor[e][lane] = e % 5 == 0 ? 1 : 0;

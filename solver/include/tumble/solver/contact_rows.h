@@ -104,7 +104,7 @@ private:
         LaneMask hasPoint[4];  // lanes whose manifold has point i
         Lane block[16];        // the normal block K, by rows
         Lane factor[16];       // L of the cached active set by rows, identity on the other rows
-        Point point[4];
+        std::uint32_t firstPoint = 0;  // its maxPoints slots in points_
     };
     struct Velocity {
         Real v[6];  // linear, then angular (world)
@@ -112,8 +112,8 @@ private:
 
     void colour(std::span<const SolverBody> bodies, std::span<const ContactConstraint> constraints);
     void fill(Bundle& bundle, int lane, const ContactConstraint& c, std::uint32_t index, Real slop,
-              Real inverseH) const;
-    Real solveFriction(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6]) const;
+              Real inverseH);
+    Real solveFriction(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6]);
     Real solveNormals(Bundle& bundle, std::span<ContactConstraint> constraints,
                       std::span<NormalFactor> factors, const SolverSettings& settings, Real bias,
                       Real inverseH, Lane (&v)[2][6]);
@@ -125,6 +125,9 @@ private:
     void scatter(const Bundle& bundle, const Lane (&v)[2][6]);
 
     std::vector<Bundle> bundles_;
+    // The bundles' point slots, one after another: a bundle of one-point manifolds takes one
+    // (a pile's), not four.
+    std::vector<Point> points_;
     std::vector<Velocity> velocities_;     // per body, then the dummy of the padding lanes
     std::vector<std::uint32_t> bodyNext_;  // per body: the lowest colour its next manifold may take
     std::vector<std::uint32_t> constraintColour_;
