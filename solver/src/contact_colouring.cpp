@@ -75,21 +75,26 @@ bool ContactRows::build(std::span<const SolverBody> bodies,
     std::size_t points = 0;
     for (const ContactConstraint& c : constraints)
         points += static_cast<std::size_t>(c.pointCount);
+    const auto hasBlock = [&](std::size_t count) { return count > 1 || settings.tolerance > 0; };
     std::size_t bundleCount = 0;
     std::size_t slots = 0;
+    std::size_t blockCount = 0;
     for (std::size_t g = 0; g + 1 < groupBegin_.size(); ++g) {
         const std::size_t bundles = (groupBegin_[g + 1] - groupBegin_[g] + kWidth - 1) / kWidth;
         bundleCount += bundles;
         slots += bundles * kWidth * (g % kGroupsPerColour);
+        blockCount += hasBlock(g % kGroupsPerColour) ? bundles : 0;
     }
     if (constraints.size() * kMinimumFillDenominator < bundleCount * kWidth ||
         points * kMinimumFillDenominator < slots)
         return false;
     bundles_.resize(bundleCount);
     points_.resize(slots / kWidth);
+    blocks_.resize(blockCount);
     const auto dummy = static_cast<std::uint32_t>(bodies.size());
     std::size_t next = 0;
     std::uint32_t nextPoint = 0;
+    std::uint32_t nextBlock = 0;
     for (std::size_t g = 0; g + 1 < groupBegin_.size(); ++g) {
         const std::uint32_t end = groupBegin_[g + 1];
         const auto count = static_cast<std::uint32_t>(g % kGroupsPerColour);
@@ -101,8 +106,14 @@ bool ContactRows::build(std::span<const SolverBody> bodies,
             nextPoint += count;
             bundle.bodyA.fill(dummy);
             bundle.bodyB.fill(dummy);
-            for (int k = 0; k < 16; ++k)
-                bundle.factor[k] = Lane{} + (k % 5 == 0 ? 1.0 : 0.0);  // identity
+            if (hasBlock(count)) {
+                bundle.block = nextBlock++;
+                Block& block = blocks_[bundle.block];
+                for (int k = 0; k < 16; ++k) {
+                    block.block[k] = Lane{};
+                    block.factor[k] = Lane{} + (k % 5 == 0 ? 1.0 : 0.0);  // identity
+                }
+            }
             bundle.factorSet.fill(NormalFactor::kNone);
             const std::uint32_t lanes = std::min<std::uint32_t>(kWidth, end - start);
             bundle.laneCount = static_cast<std::uint8_t>(lanes);
@@ -137,9 +148,11 @@ void ContactRows::fill(Bundle& bundle, int lane, const ContactConstraint& c, std
     setLanes(bundle.tangents[0], lane, c.tangents[0]);
     setLanes(bundle.tangents[1], lane, c.tangents[1]);
     setLane(bundle.friction, lane, c.friction);
-    for (int i = 0; i < 4; ++i) {
-        for (int j = 0; j < 4; ++j)
-            setLane(bundle.block[4 * i + j], lane, c.normalBlock(i, j));
+    if (bundle.block != Bundle::kNoBlock) {
+        for (int i = 0; i < 4; ++i) {
+            for (int j = 0; j < 4; ++j)
+                setLane(blocks_[bundle.block].block[4 * i + j], lane, c.normalBlock(i, j));
+        }
     }
     for (int i = 0; i < c.pointCount; ++i) {
         const ContactConstraintPoint& p = c.points[i];

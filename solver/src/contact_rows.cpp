@@ -316,11 +316,8 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
         const Lane speed = (normalDv + dot(q.angularB, v[1] + 3)) - dot(q.angularA, v[0] + 3);
         gap[i] = select(bundle.hasPoint[i], speed - target, Lane{});
     }
-    const Lane* k = bundle.block;
-    Lane c[4] = {};  // the gaps with no normal impulse
-    for (int i = 0; i < points; ++i)
-        c[i] = gap[i] - (((k[4 * i] * old[0] + k[4 * i + 1] * old[1]) + k[4 * i + 2] * old[2]) +
-                         k[4 * i + 3] * old[3]);
+    // Only a bundle of several points, or one measuring the change, has a block.
+    Block* const block = bundle.block == Bundle::kNoBlock ? nullptr : &blocks_[bundle.block];
     LaneMask single{};
     LaneMask fast{};
     LaneMask active[4] = {};
@@ -343,10 +340,16 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
     Lane next[4] = {};
     LaneMask update = single;
     if (any(fast)) {
+        const Lane* k = block->block;
+        Lane c[4] = {};  // the gaps with no normal impulse
+        for (int i = 0; i < points; ++i) {
+            c[i] = gap[i] - (((k[4 * i] * old[0] + k[4 * i + 1] * old[1]) + k[4 * i + 2] * old[2]) +
+                             k[4 * i + 3] * old[3]);
+        }
         Lane x[4];
-        solveFactoredLanes(bundle.factor, c, active, x);
+        solveFactoredLanes(block->factor, c, active, x);
         LaneMask ok;
-        checkActiveSetLanes(bundle.block, bundle.hasPoint, c, active, x, ok);
+        checkActiveSetLanes(k, bundle.hasPoint, c, active, x, ok);
         for (int lane = 0; lane < kWidth; ++lane)
             alone[lane] = alone[lane] || (fast[lane] != 0 && ok[lane] == 0);
         for (int i = 0; i < 4; ++i)
@@ -372,6 +375,7 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
     scatter(bundle, v);
     Real largestChange = 0;
     if (settings.tolerance > 0) {
+        const Lane* k = block->block;
         for (int i = 0; i < points; ++i) {
             const Lane change =
                 ((k[4 * i] * delta[0] + k[4 * i + 1] * delta[1]) + k[4 * i + 2] * delta[2]) +
@@ -416,13 +420,14 @@ Real ContactRows::solveNormalsAlone(Bundle& bundle, int lane, ContactConstraint&
     for (int i = 0; i < c.pointCount; ++i)
         points_[bundle.firstPoint + i].normalImpulse[lane] = c.points[i].normalImpulse;
     // The factor it cached, embedded in the identity.
+    Lane* embedded = blocks_[bundle.block].factor;
     for (int e = 0; e < 16; ++e)
-        bundle.factor[e][lane] = e % 5 == 0 ? 1 : 0;
+        embedded[e][lane] = e % 5 == 0 ? 1 : 0;
     bundle.factorSet[lane] = factor.set;
     if (factor.set != NormalFactor::kNone) {
         for (int i = 0; i < factor.size; ++i) {
             for (int j = 0; j <= i; ++j)
-                bundle.factor[4 * factor.rows[i] + factor.rows[j]][lane] = factor.l[i][j];
+                embedded[4 * factor.rows[i] + factor.rows[j]][lane] = factor.l[i][j];
         }
     }
     return change;

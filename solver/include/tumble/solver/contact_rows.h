@@ -90,7 +90,17 @@ private:
         // normalTarget = (targetBase + bias/h * depth) - bounceCorrection/h
         Lane targetBase, depth, correction;
     };
+    // A bundle's normal block and the factor it cached: only bundles of several points (and
+    // every bundle when measuring the change) have one, so a pile's bundles stream no 1 KB of
+    // zeros.
+    struct Block {
+        Lane block[16];   // the normal block K, by rows
+        Lane factor[16];  // L of the cached active set by rows, identity on the other rows
+    };
     struct Bundle {
+        static constexpr std::uint32_t kNoBlock = ~0u;
+        std::uint32_t firstPoint = 0;    // its maxPoints slots in points_
+        std::uint32_t block = kNoBlock;  // into blocks_
         std::array<std::uint32_t, 4> bodyA{}, bodyB{}, constraint{};
         std::array<std::uint8_t, 4> points{};  // per lane; 0 for padding
         std::uint8_t maxPoints = 0;
@@ -102,9 +112,6 @@ private:
         Lane normal[3], tangents[2][3];
         Lane inverseMassA, inverseMassB, friction;
         LaneMask hasPoint[4];  // lanes whose manifold has point i
-        Lane block[16];        // the normal block K, by rows
-        Lane factor[16];       // L of the cached active set by rows, identity on the other rows
-        std::uint32_t firstPoint = 0;  // its maxPoints slots in points_
     };
     struct Velocity {
         Real v[6];  // linear, then angular (world)
@@ -128,6 +135,7 @@ private:
     // The bundles' point slots, one after another: a bundle of one-point manifolds takes one
     // (a pile's), not four.
     std::vector<Point> points_;
+    std::vector<Block> blocks_;
     std::vector<Velocity> velocities_;     // per body, then the dummy of the padding lanes
     std::vector<std::uint32_t> bodyNext_;  // per body: the lowest colour its next manifold may take
     std::vector<std::uint32_t> constraintColour_;
