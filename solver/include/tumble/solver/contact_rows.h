@@ -53,12 +53,18 @@ public:
     /// point slots / kMinimumFillDenominator (a bundle has as many slots per lane as its
     /// largest manifold has points).
     static constexpr std::size_t kMinimumFillDenominator = 2;
+    /// Whether `points` in `manifolds` are enough for the rows: two a manifold on average
+    /// (build() says no below that, so prepare can decide before it copies the scalar rows).
+    static bool enoughPoints(std::size_t points, std::size_t manifolds) {
+        return points * kMinimumFillDenominator >= manifolds * 4;
+    }
     /// A colour's manifolds are bundled by point count, 0 to 4.
     static constexpr std::uint32_t kGroupsPerColour = 5;
 
     /// Colours the prepared constraints and builds the rows from them (their Jacobians, masses,
     /// targets and warm-start impulses); false, with no rows built, when the colours would fill
-    /// fewer than half the lanes or the points fewer than half the bundles' point slots. Allocates
+    /// fewer than half the lanes, the points fewer than half the bundles' point slots, or the
+    /// manifolds under two points on average (a pile: the scalar sweep is faster there). Allocates
     /// only when the arrays grow.
     bool build(std::span<const SolverBody> bodies, std::span<const ContactConstraint> constraints,
                const SolverSettings& settings, Real inverseH);
