@@ -46,47 +46,79 @@ void ContactRows::colour(std::span<const SolverBody> bodies,
         colours = std::max(colours, colour + 1);
     }
     colourCount_ = static_cast<int>(colours);
-    // Constraints sorted by colour, in constraint order within one (a counting sort).
-    colourBegin_.assign(colours + 1, 0);
-    for (const std::uint32_t colour : constraintColour_)
-        ++colourBegin_[colour + 1];
-    for (std::size_t k = 1; k < colourBegin_.size(); ++k)
-        colourBegin_[k] += colourBegin_[k - 1];
-    colourNext_.assign(colourBegin_.begin(), colourBegin_.end() - 1);
+    // Constraints sorted by colour and, within one, by point count, in constraint order within
+    // each group (a counting sort). A colour's manifolds share no moving body, so their order
+    // within it does not change a bit; grouped by count, a bundle of one-point manifolds (most of
+    // a pile of spheres and capsules) sweeps one point slot, not the four of its largest lane.
+    const auto group = [&](std::size_t i) {
+        const auto count = static_cast<std::uint32_t>(std::clamp(constraints[i].pointCount, 0, 4));
+        return constraintColour_[i] * kGroupsPerColour + count;
+    };
+    groupBegin_.assign(std::size_t{colours} * kGroupsPerColour + 1, 0);
+    for (std::size_t i = 0; i < constraints.size(); ++i)
+        ++groupBegin_[group(i) + 1];
+    for (std::size_t k = 1; k < groupBegin_.size(); ++k)
+        groupBegin_[k] += groupBegin_[k - 1];
+    groupNext_.assign(groupBegin_.begin(), groupBegin_.end() - 1);
     order_.resize(constraints.size());
     for (std::size_t i = 0; i < constraints.size(); ++i)
-        order_[colourNext_[constraintColour_[i]]++] = static_cast<std::uint32_t>(i);
+        order_[groupNext_[group(i)]++] = static_cast<std::uint32_t>(i);
 }
 
 bool ContactRows::build(std::span<const SolverBody> bodies,
                         std::span<const ContactConstraint> constraints,
                         const SolverSettings& settings, Real inverseH) {
-    // A lane reserves four points: manifolds of one or two points (a pile of spheres and
-    // capsules, 1.2 a manifold) stream mostly padding, and the scalar sweep's compact rows,
-    // which give the same bits, ran pile-1000 at 0.93x the rows' time.
+    // Mostly one-point manifolds (a pile of spheres and capsules, 1.2 points a manifold): the
+    // scalar sweep's compact rows. Bundled by point count, the rows ran pile-1000 at 0.9x its
+    // CPU but pile-4000 at 1.08-1.25x (bench/README.md), so the pile keeps the scalar sweep.
     std::size_t points = 0;
     for (const ContactConstraint& c : constraints)
         points += static_cast<std::size_t>(c.pointCount);
-    if (points * kMinimumFillDenominator < constraints.size() * kPointsPerLane)
+    if (!enoughPoints(points, constraints.size()))
         return false;
     colour(bodies, constraints);
+    // A bundle sweeps as many point slots as its manifolds have points. Where the colours leave
+    // the lanes or the slots mostly empty (a lone column), the scalar sweep's compact rows give
+    // the same bits for less work.
+    const auto hasBlock = [&](std::size_t count) { return count > 1 || settings.tolerance > 0; };
     std::size_t bundleCount = 0;
-    for (int colour = 0; colour < colourCount_; ++colour)
-        bundleCount += (colourBegin_[colour + 1] - colourBegin_[colour] + kWidth - 1) / kWidth;
-    if (constraints.size() * kMinimumFillDenominator < bundleCount * kWidth)
+    std::size_t slots = 0;
+    std::size_t blockCount = 0;
+    for (std::size_t g = 0; g + 1 < groupBegin_.size(); ++g) {
+        const std::size_t bundles = (groupBegin_[g + 1] - groupBegin_[g] + kWidth - 1) / kWidth;
+        bundleCount += bundles;
+        slots += bundles * kWidth * (g % kGroupsPerColour);
+        blockCount += hasBlock(g % kGroupsPerColour) ? bundles : 0;
+    }
+    if (constraints.size() * kMinimumFillDenominator < bundleCount * kWidth ||
+        points * kMinimumFillDenominator < slots)
         return false;
     bundles_.resize(bundleCount);
+    points_.resize(slots / kWidth);
+    blocks_.resize(blockCount);
     const auto dummy = static_cast<std::uint32_t>(bodies.size());
     std::size_t next = 0;
-    for (int colour = 0; colour < colourCount_; ++colour) {
-        const std::uint32_t end = colourBegin_[colour + 1];
-        for (std::uint32_t start = colourBegin_[colour]; start < end; start += kWidth) {
+    std::uint32_t nextPoint = 0;
+    std::uint32_t nextBlock = 0;
+    for (std::size_t g = 0; g + 1 < groupBegin_.size(); ++g) {
+        const std::uint32_t end = groupBegin_[g + 1];
+        const auto count = static_cast<std::uint32_t>(g % kGroupsPerColour);
+        for (std::uint32_t start = groupBegin_[g]; start < end; start += kWidth) {
             Bundle& bundle = bundles_[next++];
             bundle = Bundle{};
+            bundle.firstPoint = nextPoint;
+            std::fill_n(points_.begin() + nextPoint, count, Point{});
+            nextPoint += count;
             bundle.bodyA.fill(dummy);
             bundle.bodyB.fill(dummy);
-            for (int k = 0; k < 16; ++k)
-                bundle.factor[k] = Lane{} + (k % 5 == 0 ? 1.0 : 0.0);  // identity
+            if (hasBlock(count)) {
+                bundle.block = nextBlock++;
+                Block& block = blocks_[bundle.block];
+                for (int k = 0; k < 16; ++k) {
+                    block.block[k] = Lane{};
+                    block.factor[k] = Lane{} + (k % 5 == 0 ? 1.0 : 0.0);  // identity
+                }
+            }
             bundle.factorSet.fill(NormalFactor::kNone);
             const std::uint32_t lanes = std::min<std::uint32_t>(kWidth, end - start);
             bundle.laneCount = static_cast<std::uint8_t>(lanes);
@@ -108,7 +140,7 @@ bool ContactRows::build(std::span<const SolverBody> bodies,
 // One manifold into one lane: the constraint's prepared Jacobians, masses and impulses, and its
 // normal target split so that the sweep's bias can enter (normal_block.h, normalTarget).
 void ContactRows::fill(Bundle& bundle, int lane, const ContactConstraint& c, std::uint32_t index,
-                       Real slop, Real inverseH) const {
+                       Real slop, Real inverseH) {
     bundle.bodyA[lane] = c.bodyA;
     bundle.bodyB[lane] = c.bodyB;
     bundle.constraint[lane] = index;
@@ -121,13 +153,15 @@ void ContactRows::fill(Bundle& bundle, int lane, const ContactConstraint& c, std
     setLanes(bundle.tangents[0], lane, c.tangents[0]);
     setLanes(bundle.tangents[1], lane, c.tangents[1]);
     setLane(bundle.friction, lane, c.friction);
-    for (int i = 0; i < 4; ++i) {
-        for (int j = 0; j < 4; ++j)
-            setLane(bundle.block[4 * i + j], lane, c.normalBlock(i, j));
+    if (bundle.block != Bundle::kNoBlock) {
+        for (int i = 0; i < 4; ++i) {
+            for (int j = 0; j < 4; ++j)
+                setLane(blocks_[bundle.block].block[4 * i + j], lane, c.normalBlock(i, j));
+        }
     }
     for (int i = 0; i < c.pointCount; ++i) {
         const ContactConstraintPoint& p = c.points[i];
-        Point& q = bundle.point[i];
+        Point& q = points_[bundle.firstPoint + i];
         bundle.hasPoint[i][lane] = -1;
         setLanes(q.angularA, lane, p.angularA);
         setLanes(q.angularB, lane, p.angularB);
@@ -144,7 +178,10 @@ void ContactRows::fill(Bundle& bundle, int lane, const ContactConstraint& c, std
         for (int k = 0; k < 4; ++k) {
             setLane(q.tangentBlock[k], lane, p.tangent.block(k / 2, k % 2));
             setLane(q.tangentInverse[k], lane, p.tangent.inverse(k / 2, k % 2));
+            setLane(q.tangentAxes[k], lane, p.tangent.axes(k / 2, k % 2));
         }
+        setLane(q.tangentMoments[0], lane, p.tangent.moments(0));
+        setLane(q.tangentMoments[1], lane, p.tangent.moments(1));
         setLane(q.normalMass, lane, p.normalMass);
         setLane(q.normalImpulse, lane, p.normalImpulse);
         const bool speculative = p.separation > 0;
@@ -166,15 +203,15 @@ void ContactRows::readGroupImpulses(std::span<const ContactConstraint> constrain
                 continue;
             const ContactConstraint& c = constraints[bundle.constraint[lane]];
             for (int i = 0; i < c.pointCount; ++i)
-                bundle.point[i].normalImpulse[lane] = c.points[i].normalImpulse;
+                points_[bundle.firstPoint + i].normalImpulse[lane] = c.points[i].normalImpulse;
         }
     }
 }
 
 void ContactRows::dropBounceCorrections() {
     for (Bundle& bundle : bundles_) {
-        for (Point& q : bundle.point)
-            q.correction = Lane{};
+        for (int i = 0; i < bundle.maxPoints; ++i)
+            points_[bundle.firstPoint + i].correction = Lane{};
     }
 }
 
@@ -183,7 +220,7 @@ void ContactRows::store(std::span<ContactConstraint> constraints) const {
         for (int lane = 0; lane < bundle.laneCount; ++lane) {
             ContactConstraint& c = constraints[bundle.constraint[lane]];
             for (int i = 0; i < c.pointCount; ++i) {
-                const Point& q = bundle.point[i];
+                const Point& q = points_[bundle.firstPoint + i];
                 c.points[i].normalImpulse = q.normalImpulse[lane];
                 c.points[i].tangentImpulse = {q.tangentImpulse[0][lane], q.tangentImpulse[1][lane]};
             }

@@ -10,8 +10,6 @@
 namespace tumble {
 namespace {
 
-using Vec2 = Eigen::Matrix<Real, 2, 1>;
-
 [[gnu::always_inline]] inline Lane splat(Real x) {
     return Lane{x, x, x, x};
 }
@@ -88,6 +86,52 @@ using Vec2 = Eigen::Matrix<Real, 2, 1>;
     }
 }
 
+[[gnu::always_inline]] inline Lane squareRoot(Lane x) {
+    Lane root;
+    for (int lane = 0; lane < 4; ++lane)
+        root[lane] = std::sqrt(x[lane]);
+    return root;
+}
+
+// solveDisc's sliding case (contact_solver.cpp) in the lanes of `rim`, from b = K old - vt: the
+// same operations in the same order per lane, each lane stopping where solveDisc stops, so the
+// same bits. A pile's sliding points spent a fifth of its step in that Newton iteration, one
+// lane after another.
+template <class Point>
+[[gnu::always_inline]] inline void solveRimLanes(const Point& q, LaneMask rim, Lane b0, Lane b1,
+                                                 Lane radius, Lane& solved0, Lane& solved1) {
+    const Lane* axes = q.tangentAxes;
+    const Lane m0 = q.tangentMoments[0];
+    const Lane m1 = q.tangentMoments[1];
+    const Lane c0 = axes[0] * b0 + axes[2] * b1;  // axes' b
+    const Lane c1 = axes[1] * b0 + axes[3] * b1;
+    const Lane largestMoment = select(greater(m1, m0), m1, m0);
+    const Lane one = splat(1);
+    Lane nu{};
+    LaneMask going = rim;
+    for (int iteration = 0; iteration < 20 && any(going); ++iteration) {
+        const Lane d0 = m0 + nu;
+        const Lane d1 = m1 + nu;
+        const Lane q0 = c0 / d0;
+        const Lane q1 = c1 / d1;
+        const Lane length = squareRoot(q0 * q0 + q1 * q1);
+        const Lane derivative = ((q0 * q0) / d0 + (q1 * q1) / d1) / ((length * length) * length);
+        const Lane step = (one / length - one / radius) / derivative;
+        const Lane next = positivePart(nu - step);
+        nu = select(going, next, nu);
+        // solveDisc stops once |step| <= tol: a NaN step goes on there, and here.
+        going &=
+            ~reinterpret_cast<LaneMask>(absolute(step) <= splat(1e-12) * (next + largestMoment));
+    }
+    const Lane q0 = c0 / (m0 + nu);
+    const Lane q1 = c1 / (m1 + nu);
+    const Lane lambda0 = axes[0] * q0 + axes[1] * q1;
+    const Lane lambda1 = axes[2] * q0 + axes[3] * q1;
+    const Lane scale = radius / squareRoot(lambda0 * lambda0 + lambda1 * lambda1);
+    solved0 = select(rim, lambda0 * scale, solved0);
+    solved1 = select(rim, lambda1 * scale, solved1);
+}
+
 }  // namespace
 
 // The lane kernels are compiled twice, for AVX2 and for the x86-64 baseline, the copy chosen
@@ -133,7 +177,7 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
     for (Bundle& bundle : bundles_) {
         Lane v[2][6];
         gather(bundle, v);
-        largestChange = std::max(largestChange, solveFriction(bundle, constraints, settings, v));
+        largestChange = std::max(largestChange, solveFriction(bundle, settings, v));
         if (bundle.angular) {
             scatter(bundle, v);
             for (int lane = 0; lane < bundle.laneCount; ++lane) {
@@ -161,15 +205,13 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
 // The friction of every point, point by point as ContactSolver does, four manifolds at a time.
 // Coupled: the free answer K^-1 (K old - vt) in the lanes, solveDisc for a lane whose answer
 // leaves the disc.
-TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle,
-                                                   std::span<const ContactConstraint> constraints,
-                                                   const SolverSettings& settings,
-                                                   Lane (&v)[2][6]) const {
+TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle, const SolverSettings& settings,
+                                                   Lane (&v)[2][6]) {
     const Lane omega = splat(settings.relaxation);
     const bool coupled = settings.friction == FrictionModel::Coupled;
     Real largestChange = 0;
     for (int i = 0; i < bundle.maxPoints; ++i) {
-        Point& q = bundle.point[i];
+        Point& q = points_[bundle.firstPoint + i];
         Lane dv[3];
         for (int k = 0; k < 3; ++k)
             dv[k] = v[1][k] - v[0][k];
@@ -193,17 +235,8 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle,
             Lane solved1 = select(positive, inverse[2] * b0 + inverse[3] * b1, Lane{});
             const LaneMask rim =
                 positive & greater(solved0 * solved0 + solved1 * solved1, limit * limit);
-            if (any(rim)) {
-                for (int lane = 0; lane < kWidth; ++lane) {
-                    if (rim[lane] == 0)
-                        continue;
-                    const DiscBlock& disc = constraints[bundle.constraint[lane]].points[i].tangent;
-                    const Vec2 solved = solveDisc(disc, Vec2(old0[lane], old1[lane]),
-                                                  Vec2(vt[0][lane], vt[1][lane]), limit[lane]);
-                    solved0[lane] = solved.x();
-                    solved1[lane] = solved.y();
-                }
-            }
+            if (any(rim))
+                solveRimLanes(q, rim, b0, b1, limit, solved0, solved1);
             next0 = old0 + omega * (solved0 - old0);
             next1 = old1 + omega * (solved1 - old1);
         } else {
@@ -247,7 +280,7 @@ Real ContactRows::solveAngularAlone(Bundle& bundle, int lane, std::span<const So
     b.linearVelocity = Vec3(vb.v[0], vb.v[1], vb.v[2]);
     b.angularVelocity = Vec3(vb.v[3], vb.v[4], vb.v[5]);
     for (int i = 0; i < c.pointCount; ++i)
-        c.points[i].normalImpulse = bundle.point[i].normalImpulse[lane];
+        c.points[i].normalImpulse = points_[bundle.firstPoint + i].normalImpulse[lane];
     const Real change = solveAngularFriction(a, b, c, omega);
     for (int k = 0; k < 3; ++k) {
         va.v[3 + k] = a.angularVelocity[k];
@@ -272,20 +305,19 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
     for (int k = 0; k < 3; ++k)
         dv[k] = v[1][k] - v[0][k];
     const Lane normalDv = dot(bundle.normal, dv);
-    Lane old[4];
-    Lane gap[4];  // v_n - target with the current impulses
-    for (int i = 0; i < 4; ++i) {
-        const Point& q = bundle.point[i];
+    // Slots past maxPoints are empty in every lane (zero impulses, rows and block entries).
+    const int points = bundle.maxPoints;
+    Lane old[4] = {};
+    Lane gap[4] = {};  // v_n - target with the current impulses
+    for (int i = 0; i < points; ++i) {
+        const Point& q = points_[bundle.firstPoint + i];
         old[i] = q.normalImpulse;
         const Lane target = (q.targetBase + biasH * q.depth) - q.correction;
         const Lane speed = (normalDv + dot(q.angularB, v[1] + 3)) - dot(q.angularA, v[0] + 3);
         gap[i] = select(bundle.hasPoint[i], speed - target, Lane{});
     }
-    const Lane* k = bundle.block;
-    Lane c[4];  // the gaps with no normal impulse
-    for (int i = 0; i < 4; ++i)
-        c[i] = gap[i] - (((k[4 * i] * old[0] + k[4 * i + 1] * old[1]) + k[4 * i + 2] * old[2]) +
-                         k[4 * i + 3] * old[3]);
+    // Only a bundle of several points, or one measuring the change, has a block.
+    Block* const block = bundle.block == Bundle::kNoBlock ? nullptr : &blocks_[bundle.block];
     LaneMask single{};
     LaneMask fast{};
     LaneMask active[4] = {};
@@ -308,22 +340,30 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
     Lane next[4] = {};
     LaneMask update = single;
     if (any(fast)) {
+        const Lane* k = block->block;
+        Lane c[4] = {};  // the gaps with no normal impulse
+        for (int i = 0; i < points; ++i) {
+            c[i] = gap[i] - (((k[4 * i] * old[0] + k[4 * i + 1] * old[1]) + k[4 * i + 2] * old[2]) +
+                             k[4 * i + 3] * old[3]);
+        }
         Lane x[4];
-        solveFactoredLanes(bundle.factor, c, active, x);
+        solveFactoredLanes(block->factor, c, active, x);
         LaneMask ok;
-        checkActiveSetLanes(bundle.block, bundle.hasPoint, c, active, x, ok);
+        checkActiveSetLanes(k, bundle.hasPoint, c, active, x, ok);
         for (int lane = 0; lane < kWidth; ++lane)
             alone[lane] = alone[lane] || (fast[lane] != 0 && ok[lane] == 0);
         for (int i = 0; i < 4; ++i)
             next[i] = positivePart(old[i] + omega * (x[i] - old[i]));
         update |= fast & ok;
     }
-    next[0] = select(single, positivePart(old[0] - (omega * bundle.point[0].normalMass) * gap[0]),
-                     next[0]);
-    Lane delta[4];
-    for (int i = 0; i < 4; ++i) {
+    if (points > 0) {
+        const Lane mass = points_[bundle.firstPoint].normalMass;
+        next[0] = select(single, positivePart(old[0] - (omega * mass) * gap[0]), next[0]);
+    }
+    Lane delta[4] = {};
+    for (int i = 0; i < points; ++i) {
         delta[i] = select(update, next[i] - old[i], Lane{});
-        Point& q = bundle.point[i];
+        Point& q = points_[bundle.firstPoint + i];
         for (int j = 0; j < 3; ++j) {
             v[0][j] -= (bundle.inverseMassA * delta[i]) * bundle.normal[j];
             v[0][3 + j] -= delta[i] * q.impulseA[j];
@@ -335,7 +375,8 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
     scatter(bundle, v);
     Real largestChange = 0;
     if (settings.tolerance > 0) {
-        for (int i = 0; i < 4; ++i) {
+        const Lane* k = block->block;
+        for (int i = 0; i < points; ++i) {
             const Lane change =
                 ((k[4 * i] * delta[0] + k[4 * i + 1] * delta[1]) + k[4 * i + 2] * delta[2]) +
                 k[4 * i + 3] * delta[3];
@@ -367,7 +408,7 @@ Real ContactRows::solveNormalsAlone(Bundle& bundle, int lane, ContactConstraint&
     b.angularVelocity = Vec3(vb.v[3], vb.v[4], vb.v[5]);
     b.inverseMass = bundle.inverseMassB[lane];
     for (int i = 0; i < c.pointCount; ++i)
-        c.points[i].normalImpulse = bundle.point[i].normalImpulse[lane];
+        c.points[i].normalImpulse = points_[bundle.firstPoint + i].normalImpulse[lane];
     Real change = 0;
     solveManifoldNormals(a, b, c, factor, settings, inverseH, bias, change);
     for (int k = 0; k < 3; ++k) {
@@ -377,15 +418,16 @@ Real ContactRows::solveNormalsAlone(Bundle& bundle, int lane, ContactConstraint&
         vb.v[3 + k] = b.angularVelocity[k];
     }
     for (int i = 0; i < c.pointCount; ++i)
-        bundle.point[i].normalImpulse[lane] = c.points[i].normalImpulse;
+        points_[bundle.firstPoint + i].normalImpulse[lane] = c.points[i].normalImpulse;
     // The factor it cached, embedded in the identity.
+    Lane* embedded = blocks_[bundle.block].factor;
     for (int e = 0; e < 16; ++e)
-        bundle.factor[e][lane] = e % 5 == 0 ? 1 : 0;
+        embedded[e][lane] = e % 5 == 0 ? 1 : 0;
     bundle.factorSet[lane] = factor.set;
     if (factor.set != NormalFactor::kNone) {
         for (int i = 0; i < factor.size; ++i) {
             for (int j = 0; j <= i; ++j)
-                bundle.factor[4 * factor.rows[i] + factor.rows[j]][lane] = factor.l[i][j];
+                embedded[4 * factor.rows[i] + factor.rows[j]][lane] = factor.l[i][j];
         }
     }
     return change;

@@ -218,9 +218,11 @@ Real ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
         addSupportAcceleration(bodies, constraints, h, supportBodies_);
     Real deepestPenetration = 0;
     bounceCorrections_ = false;
+    std::size_t points = 0;
     for (ContactConstraint& c : constraints) {
         SolverBody& a = bodies[c.bodyA];
         SolverBody& b = bodies[c.bodyB];
+        points += static_cast<std::size_t>(c.pointCount);
         c.tangents = frictionBasis(c.normal);
         for (int i = 0; i < c.pointCount; ++i) {
             ContactConstraintPoint& p = c.points[i];
@@ -292,8 +294,9 @@ Real ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConst
     // Warm start only once every approach speed is measured: applied point by point above, the
     // cached impulses of earlier contacts leaked into the approach speeds of later ones, and a
     // row of touching elastic balls (Newton's cradle) gained energy with every collision.
-    // The scalar sweep's compact rows are copied here, while each constraint is in cache.
-    wide_ = settings.colouredContacts;
+    // The scalar sweep's compact rows are copied here, while each constraint is in cache; a
+    // pile's step (too few points for the rows) is known to take them before this loop.
+    wide_ = settings.colouredContacts && ContactRows::enoughPoints(points, constraints.size());
     narrow_.clear();
     for (ContactConstraint& c : constraints) {
         SolverBody& a = bodies[c.bodyA];

@@ -23,11 +23,11 @@
 /// -ffp-contract=off). Padding lanes point at a dummy body with no mass and carry zero rows.
 ///
 /// Per sweep and bundle: gather both bodies' velocities into lanes; the friction of every point
-/// (the free 2x2 solve in the lanes, the exact disc -- ContactSolver's solveDisc -- only for a
-/// lane whose free answer leaves the disc); the angular friction rows (lane by lane, rare); the
-/// normal block with the factor of the active set it cached (in the lanes when last sweep's set
-/// still carries the load, otherwise the full active-set search of solveNormalBlock for that
-/// lane). The velocities live in a compact per-body array during a sweep.
+/// (the free 2x2 solve in the lanes, then the exact disc -- ContactSolver's solveDisc, the same
+/// operations per lane -- in the lanes whose free answer leaves the disc); the angular friction
+/// rows (lane by lane, rare); the normal block with the factor of the active set it cached (in the
+/// lanes when last sweep's set still carries the load, otherwise the full active-set search of
+/// solveNormalBlock for that lane). The velocities live in a compact per-body array during a sweep.
 
 #include <array>
 #include <cstdint>
@@ -49,15 +49,23 @@ using LaneMask = std::int64_t __attribute__((vector_size(32), aligned(32)));
 class ContactRows {
 public:
     static constexpr int kWidth = 4;
-    static constexpr std::size_t kPointsPerLane = 4;
     /// The rows are built when manifolds >= lanes / kMinimumFillDenominator and points >=
-    /// manifolds * kPointsPerLane / kMinimumFillDenominator.
+    /// point slots / kMinimumFillDenominator (a bundle has as many slots per lane as its
+    /// largest manifold has points).
     static constexpr std::size_t kMinimumFillDenominator = 2;
+    /// Whether `points` in `manifolds` are enough for the rows: two a manifold on average
+    /// (build() says no below that, so prepare can decide before it copies the scalar rows).
+    static bool enoughPoints(std::size_t points, std::size_t manifolds) {
+        return points * kMinimumFillDenominator >= manifolds * 4;
+    }
+    /// A colour's manifolds are bundled by point count, 0 to 4.
+    static constexpr std::uint32_t kGroupsPerColour = 5;
 
     /// Colours the prepared constraints and builds the rows from them (their Jacobians, masses,
     /// targets and warm-start impulses); false, with no rows built, when the colours would fill
-    /// fewer than half the lanes or the manifolds fewer than half their point slots. Allocates only
-    /// when the arrays grow.
+    /// fewer than half the lanes, the points fewer than half the bundles' point slots, or the
+    /// manifolds under two points on average (a pile: the scalar sweep is faster there). Allocates
+    /// only when the arrays grow.
     bool build(std::span<const SolverBody> bodies, std::span<const ContactConstraint> constraints,
                const SolverSettings& settings, Real inverseH);
     /// One sweep over the rows, as ContactSolver::solveVelocitySweep (which calls it) without
@@ -81,13 +89,24 @@ private:
         Lane tangentAngularA[2][3], tangentAngularB[2][3];
         Lane tangentImpulseA[2][3], tangentImpulseB[2][3];
         Lane tangentBlock[4], tangentInverse[4];  // K and K^-1 on the tangent plane, by rows
+        Lane tangentMoments[2], tangentAxes[4];   // K's eigen-decomposition (DiscBlock), by rows
         Lane tangentMass[2];                      // box model
         Lane normalMass;
         Lane normalImpulse, tangentImpulse[2];
         // normalTarget = (targetBase + bias/h * depth) - bounceCorrection/h
         Lane targetBase, depth, correction;
     };
+    // A bundle's normal block and the factor it cached: only bundles of several points (and
+    // every bundle when measuring the change) have one, so a pile's bundles stream no 1 KB of
+    // zeros.
+    struct Block {
+        Lane block[16];   // the normal block K, by rows
+        Lane factor[16];  // L of the cached active set by rows, identity on the other rows
+    };
     struct Bundle {
+        static constexpr std::uint32_t kNoBlock = ~0u;
+        std::uint32_t firstPoint = 0;    // its maxPoints slots in points_
+        std::uint32_t block = kNoBlock;  // into blocks_
         std::array<std::uint32_t, 4> bodyA{}, bodyB{}, constraint{};
         std::array<std::uint8_t, 4> points{};  // per lane; 0 for padding
         std::uint8_t maxPoints = 0;
@@ -99,9 +118,6 @@ private:
         Lane normal[3], tangents[2][3];
         Lane inverseMassA, inverseMassB, friction;
         LaneMask hasPoint[4];  // lanes whose manifold has point i
-        Lane block[16];        // the normal block K, by rows
-        Lane factor[16];       // L of the cached active set by rows, identity on the other rows
-        Point point[4];
     };
     struct Velocity {
         Real v[6];  // linear, then angular (world)
@@ -109,9 +125,8 @@ private:
 
     void colour(std::span<const SolverBody> bodies, std::span<const ContactConstraint> constraints);
     void fill(Bundle& bundle, int lane, const ContactConstraint& c, std::uint32_t index, Real slop,
-              Real inverseH) const;
-    Real solveFriction(Bundle& bundle, std::span<const ContactConstraint> constraints,
-                       const SolverSettings& settings, Lane (&v)[2][6]) const;
+              Real inverseH);
+    Real solveFriction(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6]);
     Real solveNormals(Bundle& bundle, std::span<ContactConstraint> constraints,
                       std::span<NormalFactor> factors, const SolverSettings& settings, Real bias,
                       Real inverseH, Lane (&v)[2][6]);
@@ -123,12 +138,16 @@ private:
     void scatter(const Bundle& bundle, const Lane (&v)[2][6]);
 
     std::vector<Bundle> bundles_;
+    // The bundles' point slots, one after another: a bundle of one-point manifolds takes one
+    // (a pile's), not four.
+    std::vector<Point> points_;
+    std::vector<Block> blocks_;
     std::vector<Velocity> velocities_;     // per body, then the dummy of the padding lanes
     std::vector<std::uint32_t> bodyNext_;  // per body: the lowest colour its next manifold may take
     std::vector<std::uint32_t> constraintColour_;
-    std::vector<std::uint32_t> colourBegin_;  // per colour, then the end
-    std::vector<std::uint32_t> colourNext_;
-    std::vector<std::uint32_t> order_;  // constraints by colour, constraint order within one
+    std::vector<std::uint32_t> groupBegin_;  // per colour and point count, then the end
+    std::vector<std::uint32_t> groupNext_;
+    std::vector<std::uint32_t> order_;  // constraints by group, constraint order within one
     int colourCount_ = 0;
 };
 
