@@ -11,10 +11,25 @@
 
 namespace tumble {
 
+/// solveDisc's sliding case (contact_solver.cpp): the answer on the rim, from b = K old - vt.
+Eigen::Matrix<Real, 2, 1> solveDiscRim(const DiscBlock& k, const Eigen::Matrix<Real, 2, 1>& b,
+                                       Real radius);
+
 /// The coupled friction update of one point: the impulse in the disc |lambda| <= radius that
-/// removes as much of the slip vt as the block k allows, from the impulse `old`.
-Eigen::Matrix<Real, 2, 1> solveDisc(const DiscBlock& k, const Eigen::Matrix<Real, 2, 1>& old,
-                                    const Eigen::Matrix<Real, 2, 1>& vt, Real radius);
+/// removes as much of the slip vt as the block k allows, from the impulse `old`. Inline: the
+/// sticking case, most points of a resting stack, is a few operations on the sweep's critical
+/// path, which a call (its arguments through memory) lengthened.
+inline Eigen::Matrix<Real, 2, 1> solveDisc(const DiscBlock& k, const Eigen::Matrix<Real, 2, 1>& old,
+                                           const Eigen::Matrix<Real, 2, 1>& vt, Real radius) {
+    using Vec2 = Eigen::Matrix<Real, 2, 1>;
+    if (radius <= 0)
+        return Vec2::Zero();
+    const Vec2 b = k.block * old - vt;
+    const Vec2 free = k.inverse * b;
+    if (free.squaredNorm() <= radius * radius)
+        return free;
+    return solveDiscRim(k, b, radius);
+}
 
 /// Torsion and rolling resistance of one manifold, with its current normal impulses; returns the
 /// change as a speed at the farthest point (m/s).

@@ -127,13 +127,8 @@ Impact impactWithinStep(Real s, Real vEnd, Real a, Real h) {
 // Sliding case: a trust-region problem; lambda(nu) = (K + nu 1)^-1 b with b = K old - vt, and the
 // multiplier nu >= 0 solves |lambda(nu)| = r. Newton on 1/|lambda(nu)| - 1/r, which is concave
 // and increasing in nu, converges monotonically from nu = 0 (More & Sorensen).
-Vec2 solveDisc(const DiscBlock& k, const Vec2& old, const Vec2& vt, Real radius) {
-    if (radius <= 0)
-        return Vec2::Zero();
-    const Vec2 b = k.block * old - vt;
-    const Vec2 free = k.inverse * b;
-    if (free.squaredNorm() <= radius * radius)
-        return free;
+// (solveDisc, inline in contact_kernels.h, returns the free answer when it is in the disc.)
+Vec2 solveDiscRim(const DiscBlock& k, const Vec2& b, Real radius) {
     const Vec2& moments = k.moments;
     const Vec2 c = k.axes.transpose() * b;
     Real nu = 0;
