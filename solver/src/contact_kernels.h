@@ -38,11 +38,11 @@ Real solveAngularFriction(SolverBody& a, SolverBody& b, ContactConstraint& c, Re
 /// The normal rows of one manifold of n points (Point: ContactConstraintPoint or SweepPoint):
 /// its block K solved exactly (normal_block.h) with the cached factor, or point by point when it
 /// has one point or the block is degenerate. K is read only when n > 1 or when measuring. Raises
-/// largestChange to the velocity change when settings.tolerance > 0.
-template <class Point>
-void solveNormals(SolverBody& a, SolverBody& b, const Vec3& normal, const Mat4* k, Point* points,
-                  int n, NormalFactor& factor, const SolverSettings& settings, Real inverseH,
-                  Real bias, Real& largestChange) {
+/// largestChange to the velocity change when settings.tolerance > 0. Body: as normalSpeed's.
+template <class Body, class Point>
+void solveNormals(Body& a, Body& b, const Vec3& normal, const Mat4* k, Point* points, int n,
+                  NormalFactor& factor, const SolverSettings& settings, Real inverseH, Real bias,
+                  Real& largestChange) {
     const Real omega = settings.relaxation;
     Vec4 old = Vec4::Zero();
     Vec4 next = Vec4::Zero();

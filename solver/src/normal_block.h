@@ -43,16 +43,17 @@ constexpr Real kNormalFloor = 1e-12;
 bool solveNormalBlock(const Mat4& k, int n, const Vec4& c, Vec4& lambda, NormalFactor& factor);
 
 // v_n = n . (vB + wB x rB - vA - wA x rA), with the angular parts precomputed by prepare().
-// Point: a ContactConstraintPoint or the sweep's SweepPoint (the same fields).
-template <class Point>
-inline Real normalSpeed(const SolverBody& a, const SolverBody& b, const Vec3& n, const Point& p) {
+// Point: a ContactConstraintPoint or the sweep's SweepPoint (the same fields); Body: a
+// SolverBody or any type with its velocities and inverse mass (SweepRows' local copies).
+template <class Body, class Point>
+inline Real normalSpeed(const Body& a, const Body& b, const Vec3& n, const Point& p) {
     return n.dot(b.linearVelocity - a.linearVelocity) + p.angularB.dot(b.angularVelocity) -
            p.angularA.dot(a.angularVelocity);
 }
 
 // A normal impulse lambda n on B at the point, -lambda n on A.
-template <class Point>
-inline void applyNormal(SolverBody& a, SolverBody& b, const Vec3& n, const Point& p, Real lambda) {
+template <class Body, class Point>
+inline void applyNormal(Body& a, Body& b, const Vec3& n, const Point& p, Real lambda) {
     a.linearVelocity -= (a.inverseMass * lambda) * n;
     a.angularVelocity -= lambda * p.angularImpulseA;
     b.linearVelocity += (b.inverseMass * lambda) * n;

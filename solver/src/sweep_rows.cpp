@@ -11,9 +11,29 @@ namespace {
 
 using Vec2 = Eigen::Matrix<Real, 2, 1>;
 
+// A manifold's body while its rows are solved: a local copy of what the rows read and write.
+// Through references into the bodies' array, every point's velocity update was a store that the
+// next point loaded back (the compiler cannot keep them in registers past the points' own
+// stores, which might alias): a store-to-load delay per point on the sweep's critical path, a
+// lone column being one chain of manifolds. The values and operations are the same.
+struct SweepBody {
+    Vec3 linearVelocity;
+    Vec3 angularVelocity;
+    Real inverseMass;
+
+    explicit SweepBody(const SolverBody& body)
+        : linearVelocity(body.linearVelocity),
+          angularVelocity(body.angularVelocity),
+          inverseMass(body.inverseMass) {}
+    void store(SolverBody& body) const {
+        body.linearVelocity = linearVelocity;
+        body.angularVelocity = angularVelocity;
+    }
+};
+
 // The friction rows of one manifold's points (contact_solver.h): coupled on the disc, or the
 // box model with its masses from the constraint. Returns the largest change when measuring.
-Real solveFriction(SolverBody& a, SolverBody& b, const SweepManifold& m, SweepPoint* points,
+Real solveFriction(SweepBody& a, SweepBody& b, const SweepManifold& m, SweepPoint* points,
                    const ContactConstraint& c, const SolverSettings& settings) {
     const Real omega = settings.relaxation;
     Real largestChange = 0;
@@ -104,8 +124,10 @@ Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint>
                       Real inverseH, Real bias) {
     Real largestChange = 0;
     for (const SweepManifold& m : manifolds_) {
-        SolverBody& a = bodies[m.bodyA];
-        SolverBody& b = bodies[m.bodyB];
+        SolverBody& bodyA = bodies[m.bodyA];
+        SolverBody& bodyB = bodies[m.bodyB];
+        SweepBody a(bodyA);
+        SweepBody b(bodyB);
         SweepPoint* points = points_.data() + m.firstPoint;
         // Friction first, with the normal impulses of the last sweep: non-penetration, solved
         // last, matters more.
@@ -118,14 +140,20 @@ Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint>
             ContactConstraint& c = constraints[m.constraint];
             for (int i = 0; i < m.pointCount; ++i)
                 c.points[i].normalImpulse = points[i].normalImpulse;
+            a.store(bodyA);
+            b.store(bodyB);
             largestChange =
-                std::max(largestChange, solveAngularFriction(a, b, c, settings.relaxation));
+                std::max(largestChange, solveAngularFriction(bodyA, bodyB, c, settings.relaxation));
+            a = SweepBody(bodyA);
+            b = SweepBody(bodyB);
         }
         if (!m.grouped) {
             const Mat4* block = m.block == SweepManifold::kNoBlock ? nullptr : &blocks_[m.block];
             solveNormals(a, b, m.normal, block, points, m.pointCount, factors[m.constraint],
                          settings, inverseH, bias, largestChange);
         }
+        a.store(bodyA);
+        b.store(bodyB);
     }
     return largestChange;
 }
