@@ -53,7 +53,13 @@ void solveNormals(Body& a, Body& b, const Vec3& normal, const Mat4* k, Point* po
         gap(i) = normalSpeed(a, b, normal, p) - normalTarget(p, bias, settings.slop, inverseH);
     }
     Vec4 exact = old;
-    if (n > 1 && solveNormalBlock(*k, n, gap - *k * old, exact, factor)) {
+    bool solved = false;
+    if (n > 1) {
+        const Vec4 c = gap - *k * old;
+        solved = solveNormalBlockCached(*k, n, c, exact, factor) ||
+                 solveNormalBlock(*k, n, c, exact, factor);
+    }
+    if (solved) {
         next = (old + omega * (exact - old)).cwiseMax(0);
         for (int i = 0; i < n; ++i)
             applyNormal(a, b, normal, points[i], next(i) - old(i));

@@ -46,53 +46,6 @@ bool factorActive(const Mat4& k, unsigned set, Real eps, NormalFactor& f) {
     return true;
 }
 
-// Solves L L' x_S = -c_S by forward and back substitution; x is zero off the set. Unrolled for
-// each size M: y and z stay in registers and the rows are read once. The operations and their
-// order are the generic loop's (the trajectories are bitwise the same); the loop kept its eight
-// dependent divisions waiting on stack round trips, on the sweep's critical path (a stack's
-// column is one chain of manifolds).
-template <int M>
-[[gnu::always_inline]] inline void solveFactoredSize(const NormalFactor& f, const Vec4& c,
-                                                     Vec4& x) {
-    int rows[M];
-    for (int i = 0; i < M; ++i)
-        rows[i] = f.rows[i];
-    Real y[M];
-    for (int i = 0; i < M; ++i) {
-        Real sum = -c(rows[i]);
-        for (int p = 0; p < i; ++p)
-            sum -= f.l[i][p] * y[p];
-        y[i] = sum / f.l[i][i];
-    }
-    Real z[M];
-    for (int i = M - 1; i >= 0; --i) {
-        Real sum = y[i];
-        for (int p = i + 1; p < M; ++p)
-            sum -= f.l[p][i] * z[p];
-        z[i] = sum / f.l[i][i];
-    }
-    x.setZero();
-    for (int i = 0; i < M; ++i)
-        x(rows[i]) = z[i];
-}
-
-void solveFactored(const NormalFactor& f, const Vec4& c, Vec4& x) {
-    switch (f.size) {
-        case 4:
-            solveFactoredSize<4>(f, c, x);
-            return;
-        case 3:
-            solveFactoredSize<3>(f, c, x);
-            return;
-        case 2:
-            solveFactoredSize<2>(f, c, x);
-            return;
-        default:
-            solveFactoredSize<1>(f, c, x);
-            return;
-    }
-}
-
 }  // namespace
 
 bool solveNormalBlock(const Mat4& k, int n, const Vec4& c, Vec4& lambda, NormalFactor& factor) {
@@ -102,11 +55,7 @@ bool solveNormalBlock(const Mat4& k, int n, const Vec4& c, Vec4& lambda, NormalF
         std::max(kNormalTolerance * c.head(n).cwiseAbs().maxCoeff(), kNormalFloor);
     // The set that carried load last time is usually the answer (a resting face: all of it; a
     // face merely touching: none of it), so it is tried first.
-    unsigned guess = 0;
-    for (int i = 0; i < n; ++i) {
-        if (lambda(i) > 0)
-            guess |= 1u << i;
-    }
+    const unsigned guess = detail::loadedSet(lambda, n);
     Vec4 x;
     for (int attempt = -1; attempt < static_cast<int>(kSetsBySize.size()); ++attempt) {
         const unsigned set = attempt < 0 ? guess : kSetsBySize[attempt];
@@ -118,15 +67,9 @@ bool solveNormalBlock(const Mat4& k, int n, const Vec4& c, Vec4& lambda, NormalF
             // K is fixed within the step: the factor of last sweep's set is still good.
             if (factor.set != set && !factorActive(k, set, eps, factor))
                 continue;
-            solveFactored(factor, c, x);
+            detail::solveFactored(factor, c, x);
         }
-        const Vec4 w = k * x + c;
-        bool ok = true;
-        for (int i = 0; i < n && ok; ++i) {
-            const bool active = (set & (1u << i)) != 0;
-            ok = active ? (x(i) >= 0 && std::abs(w(i)) <= tolerance) : w(i) >= -tolerance;
-        }
-        if (ok) {
+        if (detail::checksOut(k, n, c, set, x, tolerance)) {
             lambda = x;
             return true;
         }

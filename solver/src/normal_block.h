@@ -42,6 +42,101 @@ constexpr Real kNormalFloor = 1e-12;
 /// NormalFactor{} whenever k changes).
 bool solveNormalBlock(const Mat4& k, int n, const Vec4& c, Vec4& lambda, NormalFactor& factor);
 
+namespace detail {
+
+// Solves L L' x_S = -c_S by forward and back substitution; x is zero off the set. Unrolled for
+// each size M: y and z stay in registers and the rows are read once. The operations and their
+// order are the generic loop's (the trajectories are bitwise the same); the loop kept its eight
+// dependent divisions waiting on stack round trips, on the sweep's critical path (a stack's
+// column is one chain of manifolds).
+template <int M>
+[[gnu::always_inline]] inline void solveFactoredSize(const NormalFactor& f, const Vec4& c,
+                                                     Vec4& x) {
+    int rows[M];
+    for (int i = 0; i < M; ++i)
+        rows[i] = f.rows[i];
+    Real y[M];
+    for (int i = 0; i < M; ++i) {
+        Real sum = -c(rows[i]);
+        for (int p = 0; p < i; ++p)
+            sum -= f.l[i][p] * y[p];
+        y[i] = sum / f.l[i][i];
+    }
+    Real z[M];
+    for (int i = M - 1; i >= 0; --i) {
+        Real sum = y[i];
+        for (int p = i + 1; p < M; ++p)
+            sum -= f.l[p][i] * z[p];
+        z[i] = sum / f.l[i][i];
+    }
+    x.setZero();
+    for (int i = 0; i < M; ++i)
+        x(rows[i]) = z[i];
+}
+
+inline void solveFactored(const NormalFactor& f, const Vec4& c, Vec4& x) {
+    switch (f.size) {
+        case 4:
+            solveFactoredSize<4>(f, c, x);
+            return;
+        case 3:
+            solveFactoredSize<3>(f, c, x);
+            return;
+        case 2:
+            solveFactoredSize<2>(f, c, x);
+            return;
+        default:
+            solveFactoredSize<1>(f, c, x);
+            return;
+    }
+}
+
+// The rows of lambda's first n that carry load, as a bit mask.
+inline unsigned loadedSet(const Vec4& lambda, int n) {
+    unsigned set = 0;
+    for (int i = 0; i < n; ++i) {
+        if (lambda(i) > 0)
+            set |= 1u << i;
+    }
+    return set;
+}
+
+// Whether x, zero off `set`, solves the LCP with that active set: x >= 0 and w = K x + c = 0 on
+// the set, w >= 0 off it, to the tolerance.
+inline bool checksOut(const Mat4& k, int n, const Vec4& c, unsigned set, const Vec4& x,
+                      Real tolerance) {
+    const Vec4 w = k * x + c;
+    bool ok = true;
+    for (int i = 0; i < n && ok; ++i) {
+        const bool active = (set & (1u << i)) != 0;
+        ok = active ? (x(i) >= 0 && std::abs(w(i)) <= tolerance) : w(i) >= -tolerance;
+    }
+    return ok;
+}
+
+}  // namespace detail
+
+/// solveNormalBlock's first attempt, inline: last answer's active set, solved with the factor
+/// cached for it (or no load at all). Most sweeps end there, and the call, its vectors passed
+/// through memory, sat on the sweep's critical path (a stack's column is one chain of
+/// manifolds). False, lambda unchanged, when the factor is not that set's or the answer fails
+/// the checks: solveNormalBlock then searches, trying this set first again (the same result).
+inline bool solveNormalBlockCached(const Mat4& k, int n, const Vec4& c, Vec4& lambda,
+                                   const NormalFactor& factor) {
+    const unsigned set = detail::loadedSet(lambda, n);
+    if (set != 0 && factor.set != set)
+        return false;
+    const Real tolerance =
+        std::max(kNormalTolerance * c.head(n).cwiseAbs().maxCoeff(), kNormalFloor);
+    Vec4 x = Vec4::Zero();
+    if (set != 0)
+        detail::solveFactored(factor, c, x);
+    if (!detail::checksOut(k, n, c, set, x, tolerance))
+        return false;
+    lambda = x;
+    return true;
+}
+
 // v_n = n . (vB + wB x rB - vA - wA x rA), with the angular parts precomputed by prepare().
 // Point: a ContactConstraintPoint or the sweep's SweepPoint (the same fields); Body: a
 // SolverBody or any type with its velocities and inverse mass (SweepRows' local copies).
