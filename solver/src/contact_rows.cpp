@@ -206,11 +206,7 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
 // Coupled: the free answer K^-1 (K old - vt) in the lanes, solveDisc for a lane whose answer
 // leaves the disc.
 TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle, const SolverSettings& settings,
-                                                   Lane (&velocities)[2][6]) {
-    // A local copy: through the reference, every point's update was stored and loaded back
-    // after the point's own stores (which might alias), on the bundle's critical path.
-    Lane v[2][6];
-    std::copy_n(&velocities[0][0], 12, &v[0][0]);
+                                                   Lane (&v)[2][6]) {
     const Lane omega = splat(settings.relaxation);
     const bool coupled = settings.friction == FrictionModel::Coupled;
     Real largestChange = 0;
@@ -270,7 +266,6 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle, const SolverS
                                      std::sqrt(largestLane(change0 * change0 + change1 * change1)));
         }
     }
-    std::copy_n(&v[0][0], 12, &velocities[0][0]);
     return largestChange;
 }
 
@@ -303,9 +298,7 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
                                                   std::span<ContactConstraint> constraints,
                                                   std::span<NormalFactor> factors,
                                                   const SolverSettings& settings, Real bias,
-                                                  Real inverseH, const Lane (&velocities)[2][6]) {
-    Lane v[2][6];  // a local copy, as solveFriction's
-    std::copy_n(&velocities[0][0], 12, &v[0][0]);
+                                                  Real inverseH, Lane (&v)[2][6]) {
     const Lane omega = splat(settings.relaxation);
     const Lane biasH = splat(bias * inverseH);
     Lane dv[3];

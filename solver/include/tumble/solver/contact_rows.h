@@ -129,7 +129,7 @@ private:
     Real solveFriction(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6]);
     Real solveNormals(Bundle& bundle, std::span<ContactConstraint> constraints,
                       std::span<NormalFactor> factors, const SolverSettings& settings, Real bias,
-                      Real inverseH, const Lane (&v)[2][6]);
+                      Real inverseH, Lane (&v)[2][6]);
     Real solveAngularAlone(Bundle& bundle, int lane, std::span<const SolverBody> bodies,
                            ContactConstraint& c, Real omega);
     Real solveNormalsAlone(Bundle& bundle, int lane, ContactConstraint& c, NormalFactor& factor,
