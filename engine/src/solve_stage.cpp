@@ -144,7 +144,8 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
     const bool anchored =
         settings.frictionAnchors && settings.stabilisation == Stabilisation::SplitImpulse;
     if (anchored)
-        holdAnchors(bodies, contacts, springs, constraints, context);
+        holdAnchors(bodies, contacts, springs, constraints, context,
+                    AnchorLengths::of(settings.slop, contacts.contactMargin));
 
     brokenJoints_.clear();
     storeJointResults(joints, jointRows_, rowJoint_, context.h, brokenJoints_);
@@ -163,10 +164,10 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
 
     for (std::size_t j = 0; j < constraints.size(); ++j) {
         ContactConstraint& c = constraints[j];
-        if (anchored)  // off: soak.pile-sleeps never slept with it (see docs)
+        if (anchored) {  // equilibrated before release reads the manifold's friction share
             equilibrateFriction(c);
-        if (anchored)
             anchors_.release(constraintContact_[j], c);
+        }
         Contact& contact = contacts.contact(constraintContact_[j]);
         contact.angularImpulse = c.angularImpulse;
         for (int i = 0; i < c.pointCount; ++i) {
@@ -195,7 +196,7 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
 void SolveStage::holdAnchors(const BodyStore& bodies, const ContactManager& contacts,
                              const SpringStore& springs,
                              std::span<const ContactConstraint> constraints,
-                             const StepContext& context) {
+                             const StepContext& context, const AnchorLengths& lengths) {
     anchors_.beginSolve();
     anchorDrifts_.assign(4 * constraints.size(), Vec3::Zero());
     sprung_.assign(solverBodies_.size(), 0);
@@ -217,10 +218,11 @@ void SolveStage::holdAnchors(const BodyStore& bodies, const ContactManager& cont
         const std::uint32_t slot = constraintContact_[j];
         const Contact& contact = contacts.contact(slot);
         anchors_.drifts(slot, contact, bodies.motion[bodies.indexOf(contact.bodyA)],
-                        bodies.motion[bodies.indexOf(contact.bodyB)], context.h, c,
+                        bodies.motion[bodies.indexOf(contact.bodyB)], context.h, c, lengths,
                         &anchorDrifts_[4 * j]);
     }
-    anchorPass_.run(solverBodies_, constraints, anchorDrifts_, pseudo_, context.inverseH);
+    anchorPass_.run(solverBodies_, constraints, anchorDrifts_, pseudo_, context.inverseH,
+                    lengths.deadband);
 }
 
 // The rows' geometry at the positions the step ended on, and what each must correct (m): returns
