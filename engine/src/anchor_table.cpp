@@ -83,16 +83,18 @@ void AnchorTable::drifts(std::uint32_t slot, const Contact& contact, const BodyM
 
 // The patch slips as a whole when its friction reaches kSlipShare of its Coulomb limit (a point
 // the normal block left unloaded is at its zero limit while the others stick).
-void AnchorTable::release(std::uint32_t slot, const ContactConstraint& c) {
-    if (slot >= entries_.size())
-        return;
+bool AnchorTable::slips(const ContactConstraint& c) {
     Real friction = 0;  // N s
     Real limit = 0;
     for (int i = 0; i < c.pointCount; ++i) {
         friction += std::hypot(c.points[i].tangentImpulse[0], c.points[i].tangentImpulse[1]);
         limit += c.friction * c.points[i].normalImpulse;
     }
-    if (c.friction == 0 || friction >= kSlipShare * limit)
+    return c.friction == 0 || friction >= kSlipShare * limit;
+}
+
+void AnchorTable::release(std::uint32_t slot, const ContactConstraint& c) {
+    if (slot < entries_.size() && slips(c))
         entries_[slot].count = 0;
 }
 

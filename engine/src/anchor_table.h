@@ -34,6 +34,9 @@ public:
     /// After the solve: a manifold whose friction reached its Coulomb limit slips as a whole,
     /// and its anchors are seated afresh next step.
     void release(std::uint32_t slot, const ContactConstraint& c);
+    /// Whether the manifold's friction impulses reach the share of mu sum(lambda_n) at which it
+    /// slips as a whole.
+    static bool slips(const ContactConstraint& c);
 
 private:
     struct Entry {
