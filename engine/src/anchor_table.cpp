@@ -5,11 +5,6 @@
 namespace tumble {
 namespace {
 
-// A sticking point's anchors may stay this far (m, along the surface) behind the point before
-// they are seated afresh: a rolling body's contact point moves over both surfaces while it
-// sticks. Over that reach the anchors of a ball of radius R rolling drift R (t - sin t),
-// t = reach / R: 1.7e-5 m at R = 0.1 m.
-constexpr Real kReach = 0.01;
 // A manifold whose friction impulses add up to this share of mu sum(lambda_n) slips.
 constexpr Real kSlipShare = 0.99;
 
@@ -22,12 +17,24 @@ Vec3 onPlane(const Vec3& v, const Vec3& n) {
 // The manifold's anchors are seated together: anchors seated at different times disagree with
 // any rigid motion, and the friction rows then fought each other.
 //
+// Anchors measure slip only while they stay at the contact. A rolling body's contact point moves
+// over both surfaces while nothing slips, and the material points it left part as a cycloid,
+// R (t - sin t) for a ball of radius R rolled by R t: with anchors kept over 1 cm (1.7e-5 m at
+// R = 0.1 m, above the deadband) the pass pulled a ball rolling down a slope and changed its
+// acceleration by 4.2e-5 relative (validate.rolling-resistance, 28 steps of the pass). So a
+// manifold whose points moved away from their anchors' midpoint by more than the anchors moved
+// apart (twice that, plus the deadband) has rolled, and is seated afresh where its points are:
+// its slip is then what the velocity solve left, the bend of the paths aside. A point
+// sticking on a platform stays with its anchor on one body and leaves the other's by the
+// drift, so it moves from their midpoint by half the drift and keeps them.
+//
 // The drift is the one expected at the end of the step: the points' paths bend with their
 // bodies' spins, which velocities sticking at the start of the step do not follow (on a turning
 // platform a point falls behind a straight line by omega^2 r h^2 / 2 per step: 0.46 mm at the
 // issue's slip speed).
 void AnchorTable::drifts(std::uint32_t slot, const Contact& contact, const BodyMotion& a,
-                         const BodyMotion& b, Real h, const ContactConstraint& c, Vec3* drifts) {
+                         const BodyMotion& b, Real h, const ContactConstraint& c,
+                         const AnchorLengths& lengths, Vec3* drifts) {
     if (entries_.size() <= slot)
         entries_.resize(slot + 1);
     Entry& entry = entries_[slot];
@@ -49,9 +56,10 @@ void AnchorTable::drifts(std::uint32_t slot, const Contact& contact, const BodyM
         kept.feature[i] = feature;
         const Vec3 onA = a.center + a.orientation * entry.onA[k];
         const Vec3 onB = b.center + b.orientation * entry.onB[k];
-        const Vec3 away = 0.5 * (onA + onB) - contact.manifold.points[i].position;
-        seat = onPlane(away, n).norm() >= kReach;
+        const Real away =
+            onPlane(0.5 * (onA + onB) - contact.manifold.points[i].position, n).norm();
         drifts[i] = onPlane(onB - onA, n);
+        seat = away >= lengths.reach || away > lengths.deadband + 2 * drifts[i].norm();
     }
     if (seat) {
         for (int i = 0; i < c.pointCount; ++i) {
@@ -75,16 +83,18 @@ void AnchorTable::drifts(std::uint32_t slot, const Contact& contact, const BodyM
 
 // The patch slips as a whole when its friction reaches kSlipShare of its Coulomb limit (a point
 // the normal block left unloaded is at its zero limit while the others stick).
-void AnchorTable::release(std::uint32_t slot, const ContactConstraint& c) {
-    if (slot >= entries_.size())
-        return;
+bool AnchorTable::slips(const ContactConstraint& c) {
     Real friction = 0;  // N s
     Real limit = 0;
     for (int i = 0; i < c.pointCount; ++i) {
         friction += std::hypot(c.points[i].tangentImpulse[0], c.points[i].tangentImpulse[1]);
         limit += c.friction * c.points[i].normalImpulse;
     }
-    if (c.friction == 0 || friction >= kSlipShare * limit)
+    return c.friction == 0 || friction >= kSlipShare * limit;
+}
+
+void AnchorTable::release(std::uint32_t slot, const ContactConstraint& c) {
+    if (slot < entries_.size() && slips(c))
         entries_[slot].count = 0;
 }
 

@@ -12,6 +12,7 @@
 #include "body_store.h"
 #include "tumble/contact.h"
 #include "tumble/solver/contact_solver.h"
+#include "tumble/solver/friction_anchors.h"
 
 namespace tumble {
 
@@ -25,12 +26,17 @@ public:
     /// The drift each point of `c` (contact `slot`, its manifold `contact.manifold`) is expected
     /// to have at the end of the step: B's anchor - A's on the tangent plane, plus the bend of
     /// the points' paths over the step (m, world), into drifts[0 .. c.pointCount). Seats the
-    /// manifold's anchors afresh (drift: the bend only) when a point has none.
+    /// manifold's anchors afresh (drift: the bend only) when a point has none, when a point
+    /// rolled away from its anchors, or moved `lengths.reach` from them.
     void drifts(std::uint32_t slot, const Contact& contact, const BodyMotion& a,
-                const BodyMotion& b, Real h, const ContactConstraint& c, Vec3* drifts);
+                const BodyMotion& b, Real h, const ContactConstraint& c,
+                const AnchorLengths& lengths, Vec3* drifts);
     /// After the solve: a manifold whose friction reached its Coulomb limit slips as a whole,
     /// and its anchors are seated afresh next step.
     void release(std::uint32_t slot, const ContactConstraint& c);
+    /// Whether the manifold's friction impulses reach the share of mu sum(lambda_n) at which it
+    /// slips as a whole.
+    static bool slips(const ContactConstraint& c);
 
 private:
     struct Entry {

@@ -144,7 +144,8 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
     const bool anchored =
         settings.frictionAnchors && settings.stabilisation == Stabilisation::SplitImpulse;
     if (anchored)
-        holdAnchors(bodies, contacts, springs, constraints, context);
+        holdAnchors(bodies, contacts, springs, constraints, context,
+                    AnchorLengths::of(settings.slop, contacts.contactMargin));
 
     brokenJoints_.clear();
     storeJointResults(joints, jointRows_, rowJoint_, context.h, brokenJoints_);
@@ -163,10 +164,10 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
 
     for (std::size_t j = 0; j < constraints.size(); ++j) {
         ContactConstraint& c = constraints[j];
-        if (anchored)  // off: soak.pile-sleeps never slept with it (see docs)
+        if (anchored) {  // equilibrated before release reads the manifold's friction share
             equilibrateFriction(c);
-        if (anchored)
             anchors_.release(constraintContact_[j], c);
+        }
         Contact& contact = contacts.contact(constraintContact_[j]);
         contact.angularImpulse = c.angularImpulse;
         for (int i = 0; i < c.pointCount; ++i) {
@@ -187,6 +188,13 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
 
 // The anchors' drifts are those of the poses the step starts from, as the constraints' points.
 //
+// A manifold whose friction reached its limit in this step's velocity solve slides: it has no
+// place to hold, and is left out (and seated afresh when it sticks again). Pulled, the 1,000-body
+// pile's landing bodies (1.3-2 m/s) went deeper into the terrain than the same pile on a
+// half-space by more than 1 cm (hull 0.051 against 0.041 m; TerrainTunnel): the pull at a
+// sliding corner under the centre of mass turned the body into the ground, and the push-out
+// acts only the step after.
+//
 // A body a spring ends on is left out: the pass moves positions and sees no spring, and a
 // spring's state is its length, so what the pass moves such a body by comes back as force next
 // step. A net node (20 g) on a thread of 1e4 N/m pulled back 10 um (the deadband) gets 0.1 N,
@@ -195,7 +203,7 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
 void SolveStage::holdAnchors(const BodyStore& bodies, const ContactManager& contacts,
                              const SpringStore& springs,
                              std::span<const ContactConstraint> constraints,
-                             const StepContext& context) {
+                             const StepContext& context, const AnchorLengths& lengths) {
     anchors_.beginSolve();
     anchorDrifts_.assign(4 * constraints.size(), Vec3::Zero());
     sprung_.assign(solverBodies_.size(), 0);
@@ -212,15 +220,16 @@ void SolveStage::holdAnchors(const BodyStore& bodies, const ContactManager& cont
     }
     for (std::size_t j = 0; j < constraints.size(); ++j) {
         const ContactConstraint& c = constraints[j];
-        if (c.friction == 0 || sprung_[c.bodyA] != 0 || sprung_[c.bodyB] != 0)
+        if (sprung_[c.bodyA] != 0 || sprung_[c.bodyB] != 0 || AnchorTable::slips(c))
             continue;
         const std::uint32_t slot = constraintContact_[j];
         const Contact& contact = contacts.contact(slot);
         anchors_.drifts(slot, contact, bodies.motion[bodies.indexOf(contact.bodyA)],
-                        bodies.motion[bodies.indexOf(contact.bodyB)], context.h, c,
+                        bodies.motion[bodies.indexOf(contact.bodyB)], context.h, c, lengths,
                         &anchorDrifts_[4 * j]);
     }
-    anchorPass_.run(solverBodies_, constraints, anchorDrifts_, pseudo_, context.inverseH);
+    anchorPass_.run(solverBodies_, constraints, anchorDrifts_, pseudo_, context.inverseH,
+                    lengths.deadband);
 }
 
 // The rows' geometry at the positions the step ended on, and what each must correct (m): returns

@@ -70,7 +70,7 @@ private:
     /// Contacts of a body a spring holds are left out (see the definition).
     void holdAnchors(const BodyStore& bodies, const ContactManager& contacts,
                      const SpringStore& springs, std::span<const ContactConstraint> constraints,
-                     const StepContext& context);
+                     const StepContext& context, const AnchorLengths& lengths);
 
     ConstraintSolver solver_;
     std::vector<SolverBody> solverBodies_;

@@ -35,16 +35,11 @@ Real share(Real size, Real limit) {
     return limit > 0 ? size / limit : std::numeric_limits<Real>::infinity();
 }
 
-// A manifold whose anchors all lie within this of each other (m) is left out of the pass: it is
-// held in velocity, and its anchors pull once it drifts further (1 % of a millimetre). Resting
-// contacts drift by the solve's residual, far less, so a pile at rest skips the pass.
-constexpr Real kDeadband = 1e-5;
-
-bool drifting(const ContactConstraint& c, const Vec3* drifts) {
+bool drifting(const ContactConstraint& c, const Vec3* drifts, Real deadband) {
     if (c.friction == 0)
         return false;
     for (int i = 0; i < c.pointCount; ++i)
-        if (drifts[i].squaredNorm() > kDeadband * kDeadband)
+        if (drifts[i].squaredNorm() > deadband * deadband)
             return true;
     return false;
 }
@@ -99,13 +94,20 @@ void pullPoints(SolverBody& a, SolverBody& b, const ContactConstraint& c, const 
 
 }  // namespace
 
+AnchorLengths AnchorLengths::of(Real slop, Real contactMargin) {
+    Real length = slop > 0 ? slop : contactMargin;
+    if (!(length > 0))
+        length = SolverSettings{}.slop;
+    return {length / 500, 2 * length};
+}
+
 void FrictionAnchorPass::run(std::span<const SolverBody> bodies,
                              std::span<const ContactConstraint> constraints,
                              std::span<const Vec3> drifts, std::vector<PseudoVelocity>& pseudo,
-                             Real inverseH) {
+                             Real inverseH, Real deadband) {
     active_.clear();
     for (std::size_t j = 0; j < constraints.size(); ++j)
-        if (drifting(constraints[j], &drifts[4 * j]))
+        if (drifting(constraints[j], &drifts[4 * j], deadband))
             active_.push_back(static_cast<std::uint32_t>(j));
     if (active_.empty())
         return;

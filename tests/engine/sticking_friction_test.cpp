@@ -35,7 +35,7 @@ struct Ride {
     Real yaw = 0;       ///< of the cube about its vertical (rad)
     Real alpha = 0.05;  ///< the platform's angular acceleration (rad/s^2)
     Real h = 1.0 / 60;
-    bool anchors = false;
+    bool anchors = SolverSettings{}.frictionAnchors;  // on by default
 };
 
 struct Outcome {
@@ -145,13 +145,14 @@ TEST(StickingFriction, BoxOnATurningPlatformSlipsWhenItNeedsMuG) {
     }
 }
 
-// The reproduction: r = 1 m, omega = 0.05 t, mu = 0.4, h = 1/60, anchors on (off by
-// default: docs/ARCHITECTURE.md, "Friction anchors", says which tests fail with them on). The cube
-// stays within 1 mm of its spot until the friction it needs is 0.98 of mu g (then the manifold
-// reaches 0.99 of its limit and lets its anchors go), and slips within 3 % of omega = sqrt(mu g /
-// r) = 1.98. Without anchors: 0.32 m outward by then, and it left at 1.78.
+// The reproduction at the default settings (anchors on): r = 1 m, omega = 0.05 t,
+// mu = 0.4, h = 1/60. The cube stays within 1 mm of its spot until the friction it needs is
+// 0.98 of mu g (then the manifold reaches 0.99 of its limit and lets its anchors go), and slips
+// within 3 % of omega = sqrt(mu g / r) = 1.98. Without anchors: 0.32 m outward by then, and it
+// left at 1.78.
 TEST(StickingFriction, CubeOnATurningPlatformStaysOnItsSpotUntilOmegaSquaredREqualsMuG) {
-    const Ride r{.anchors = true};
+    const Ride r{};
+    ASSERT_TRUE(r.anchors);
     const Real onset = slipOmega(r, r.radius);
     const Outcome out = ride(r, 0.99 * onset);
     std::printf("within %.2g m of its spot; slips at omega = %.4f (analytic %.4f)\n",

@@ -21,6 +21,22 @@ namespace tumble {
 /// be carried.
 void equilibrateFriction(ContactConstraint& c);
 
+/// The anchors' lengths, from the scene's own length settings, so that a scene scaled by
+/// dynamic similarity (lengths by s: slop, margins) keeps its anchors in proportion: fixed in
+/// metres, they made a 1 mm cube land 9.6e-4 of its half side away from a metre cube's pose.
+struct AnchorLengths {
+    /// A manifold whose anchors all lie within this of each other (m) skips the pass: it is
+    /// held in velocity, and resting contacts drift by the solve's residual, far less, so a
+    /// pile at rest skips it. slop / 500: 1e-5 m at the default slop.
+    Real deadband = 0;
+    /// A manifold's anchors are seated afresh once its points moved this far from them (m)
+    /// along the surfaces: a sliding manifold that never reaches its limit. 2 slop.
+    Real reach = 0;
+    /// From the scene's slop, or where that is 0 its contact margin, or where both are 0 the
+    /// default slop (a deadband of 0 would send a pile at rest through the pass every step).
+    static AnchorLengths of(Real slop, Real contactMargin);
+};
+
 /// Split impulse's friction anchor pass: after the relax sweeps, moves each sticking point back
 /// onto its anchors through the pseudo-velocities, which change positions only. A few sweeps of
 /// the friction rows, cold-started, aim each point's tangential pseudo-velocity at -drift / h
@@ -33,8 +49,10 @@ class FrictionAnchorPass {
 public:
     /// `drifts`: 4 per constraint, each point's anchor drift (m, world, tangent plane, B's anchor
     /// - A's; AnchorTable). `pseudo`: one per body, updated.
+    /// `deadband`: AnchorLengths::deadband.
     void run(std::span<const SolverBody> bodies, std::span<const ContactConstraint> constraints,
-             std::span<const Vec3> drifts, std::vector<PseudoVelocity>& pseudo, Real inverseH);
+             std::span<const Vec3> drifts, std::vector<PseudoVelocity>& pseudo, Real inverseH,
+             Real deadband);
 
 private:
     std::vector<SolverBody> bodies_;     ///< the bodies at their pseudo-velocities
