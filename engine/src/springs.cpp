@@ -9,6 +9,10 @@ namespace {
 // No body: a spring end fixed in the world.
 constexpr std::uint32_t kWorld = ~std::uint32_t(0);
 
+// A thread whose length changes by less than this share of its rest length over a step asks for
+// no substeps (threadSubsteps): a net hanging at rest keeps its one step.
+constexpr Real kStillStretch = 1e-4;
+
 // One end of an explicit spring: its body's dense index (looked up once a step), where its
 // anchor is, and the anchor's offset from the body's centre, zero for a lumped node (whose
 // threads meet at its centre: no rotation, no lever arm).
@@ -25,6 +29,15 @@ End endOf(const BodyStore& bodies, BodyId body, const Vec3& localAnchor) {
     const std::uint32_t i = bodies.indexOf(body);
     const Vec3 position = anchorAt(bodies, i, localAnchor);
     return {i, position, position - bodies.motion[i].center, bodies.isAwakeDynamic(i)};
+}
+
+// What a spring end adds to its row's inverse mass (1/kg, linear): nothing but for an awake
+// dynamic body.
+Real endInverseMass(const BodyStore& bodies, BodyId body) {
+    if (body.isNull())
+        return 0;
+    const std::uint32_t i = bodies.indexOf(body);
+    return bodies.isAwakeDynamic(i) ? bodies.inertia[i].inverseMass : 0;
 }
 
 Vec3 anchorVelocity(const BodyStore& bodies, const End& end) {
@@ -101,6 +114,39 @@ void wakeSpringLinked(const SpringStore& springs, BodyStore& bodies, ContactMana
             }
         }
     }
+}
+
+int threadSubsteps(const SpringStore& springs, const BodyStore& bodies, Real h) {
+    int substeps = 0;  // 0: no thread at work
+    for (std::uint32_t i = 0; i < springs.count(); ++i) {
+        const SpringDef& def = springs.defs[i];
+        if (def.formulation != SpringFormulation::Implicit || !def.tensionOnly ||
+            def.numericalDamping != 0)
+            continue;
+        // The band first, from the masses alone: most nets' threads are outside it, and the
+        // geometry was most of this pass (~50 ns a thread).
+        const Real inverseMass =
+            endInverseMass(bodies, def.bodyA) + endInverseMass(bodies, def.bodyB);
+        const int most = discreteGradientSubsteps(h * h * def.stiffness * inverseMass);
+        if (most == 0)
+            continue;
+        const End a = endOf(bodies, def.bodyA, def.localAnchorA);
+        const End b = endOf(bodies, def.bodyB, def.localAnchorB);
+        const Vec3 d = b.position - a.position;
+        const Real length = d.norm();
+        if (!(length > 0))
+            continue;
+        const Real change =
+            h * (d / length).dot(anchorVelocity(bodies, b) - anchorVelocity(bodies, a));
+        const Real stretch = length - def.restLength;
+        const bool works = (stretch >= 0 || stretch + change > 0) &&
+                           std::abs(change) > kStillStretch * def.restLength;
+        if (works)
+            substeps = substeps == 0 ? most : std::min(substeps, most);
+        if (substeps == 1)
+            return 1;
+    }
+    return std::max(substeps, 1);
 }
 
 void ForceElements::apply(SpringStore& springs, const DragStore& drag, BodyStore& bodies) {

@@ -39,6 +39,11 @@ Real springLength(const SpringStore& springs, const BodyStore& bodies, std::uint
 /// tension-only element shorter than its rest length.
 Real springPotentialEnergy(const SpringStore& springs, const BodyStore& bodies);
 
+/// Substeps for a step of h in which undamped threads on the discrete gradient work (spring_row.h):
+/// the most that keeps every such thread that is taut, or caught within the step, and whose length
+/// changes, on the gradient (floor(omega h / 2)); 1 when none works. See docs/ARCHITECTURE.md.
+int threadSubsteps(const SpringStore& springs, const BodyStore& bodies, Real h);
+
 /// A spring keeps both its bodies in one island: wakes every sleeping dynamic body linked by a
 /// spring to an awake dynamic or moving kinematic body, repeated until nothing more wakes.
 void wakeSpringLinked(const SpringStore& springs, BodyStore& bodies, ContactManager& contacts,

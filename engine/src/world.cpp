@@ -304,9 +304,15 @@ StepStatus World::step() {
     w.joints.saveState();
     w.controllers.save();
 
-    const StepContext context = w.substepContext();
+    // A step in which unresolved threads work runs as more substeps (springs.h).
+    const int substeps =
+        w.settings.substeps *
+        (w.springs.implicitCount > 0
+             ? threadSubsteps(w.springs, w.bodies, w.settings.timeStep / w.settings.substeps)
+             : 1);
+    const StepContext context = w.substepContext(substeps);
     StepStatus status;
-    for (int substep = 0; substep < w.settings.substeps && status.ok(); ++substep) {
+    for (int substep = 0; substep < substeps && status.ok(); ++substep) {
         if (substep > 0)
             w.beginSubstep();
         status = w.substep(context);

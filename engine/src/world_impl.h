@@ -86,8 +86,8 @@ struct World::Impl {
         return {settings.timeStep, 1 / settings.timeStep, settings.gravity};
     }
     /// One substep, h / substeps: every stage between the pre-step callback and sleeping.
-    StepContext substepContext() const {
-        const Real h = settings.timeStep / settings.substeps;
+    StepContext substepContext(int substeps) const {
+        const Real h = settings.timeStep / substeps;
         return {h, 1 / h, settings.gravity};
     }
 

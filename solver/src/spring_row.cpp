@@ -286,6 +286,12 @@ void prepareSpringRow(const SolverBody& a, const SolverBody& b, SpringRow& row, 
     row.bias = (row.stiffness * stretch - lastShare * startRate) / resistance;
 }
 
+int discreteGradientSubsteps(Real squared) {
+    if (!(squared >= kDampedFrom && squared <= kDiscreteGradientUpTo))
+        return 0;
+    return std::max(1, static_cast<int>(std::sqrt(squared / kDampedFrom)));
+}
+
 bool springRowUnresolved(const SpringRow& row, Real h) {
     if (row.mass <= 0)
         return false;

@@ -184,6 +184,11 @@ void lineariseThreadRow(const SolverBody& a, const SolverBody& b, SpringRow& row
 void lineariseThreadTurn(const SolverBody& a, const SolverBody& b, const SpringRow& thread,
                          SpringRow& turn, Real h);
 
+/// Equal substeps of a step that an undamped thread with (omega h)^2 = `squared` at the step's h
+/// may be split into and still take the discrete gradient in each, floor(omega h / 2); 0 when it
+/// does not take the gradient at h.
+int discreteGradientSubsteps(Real squared);
+
 /// Whether a prepared row's element is one the step does not resolve ((omega h)^2 >= 4): its
 /// scheme damps it, and its turning within the step wants post-stabilisation.
 bool springRowUnresolved(const SpringRow& row, Real h);
