@@ -57,13 +57,31 @@ void prepareSegmentContacts(std::span<SolverBody> bodies, std::span<SegmentConta
     }
 }
 
+void solveSegmentPositions(std::span<SolverBody> bodies, std::span<SegmentContactRow> rows,
+                           Real factor, Real inverseH, Real slop, int iterations) {
+    for (SegmentContactRow& row : rows)
+        row.positionImpulse = 0;
+    for (int sweep = 0; sweep < iterations; ++sweep) {
+        for (SegmentContactRow& row : rows) {
+            if (!row.pushOut || row.separation >= -slop)
+                continue;
+            const Real target = factor * inverseH * (-row.separation - slop);
+            const Real speed = relativeVelocity(bodies, row).dot(row.normal);
+            const Real old = row.positionImpulse;
+            row.positionImpulse = std::max<Real>(0, old - row.normalMass * (speed - target));
+            applySegmentImpulse(bodies, row, (row.positionImpulse - old) * row.normal);
+        }
+    }
+}
+
 Real solveSegmentContacts(std::span<SolverBody> bodies, std::span<SegmentContactRow> rows,
                           Real inverseH, Real bias, Real slop) {
     Real largestChange = 0;
     for (SegmentContactRow& row : rows) {
         // The normal first, so friction is clamped by this sweep's support.
-        const Real push =
-            row.separation > 0 ? 0 : bias * inverseH * std::max<Real>(0, -row.separation - slop);
+        const Real push = row.separation > 0 || !row.pushOut
+                              ? 0
+                              : bias * inverseH * std::max<Real>(0, -row.separation - slop);
         const Real target = row.separation > 0 ? -row.separation * inverseH : push;
         const Real speed = relativeVelocity(bodies, row).dot(row.normal);
         const Real old = row.normalImpulse;

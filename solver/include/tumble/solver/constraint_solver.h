@@ -60,9 +60,10 @@ private:
     int runSweeps(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                   std::span<SpringRow> springs, const SolverSettings& settings, Real inverseH,
                   Real bias, int sweeps);
-    /// Split impulse's position pass for the joints (solveJointPositions) on `pseudo`.
-    void correctJoints(std::span<const SolverBody> bodies, std::vector<PseudoVelocity>& pseudo,
-                       Real inverseH, const SolverSettings& settings);
+    /// Split impulse's position pass for the joints (solveJointPositions) and the thread contacts
+    /// (solveSegmentPositions) on `pseudo`.
+    void correctPositions(std::span<const SolverBody> bodies, std::vector<PseudoVelocity>& pseudo,
+                          Real inverseH, const SolverSettings& settings);
 
     ContactSolver contacts_;
     SolverProfile profile_;
@@ -70,6 +71,7 @@ private:
     bool directSprings_ = false;             ///< this step's springs go through springBlock_
     std::span<JointRow> joints_;             ///< of the solve in progress
     std::span<SegmentContactRow> segments_;  ///< of the solve in progress
+    bool segmentPositions_ = false;          ///< their push-out goes to a position pass
     Real jointBias_ = 0;                     ///< their bias in the velocity sweeps (Baumgarte only)
     std::vector<Mat3> geometricStiffness_;   ///< scratch of applyJointGeometricStiffness
     SpringBlockSolver jointBlock_;           ///< ball joints' point rows (jointSolve Direct)

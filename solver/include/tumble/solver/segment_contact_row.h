@@ -14,10 +14,12 @@
 ///     K = wA^2 kA + wB^2 kB + kS,   kX = 1/mX + (rX x n)' IX^-1 (rX x n),
 ///
 /// for point-mass nodes on a static shape 1 / ((1 - t)^2 / mA + t^2 / mB). The target is the
-/// contacts' (normal_block.h): -s / h for a speculative point (s > 0), else the split-impulse or
-/// Baumgarte push-out of the depth beyond the slop. Coulomb friction on the two tangents with
-/// the same weights, each with its own effective mass, the pair clamped to the disc
-/// |lambda_t| <= mu lambda_n. No restitution: a thread lands inelastically.
+/// contacts' (normal_block.h): -s / h for a speculative point (s > 0), else the Baumgarte push-out
+/// of the depth beyond the slop; under split impulse the sweeps take no push-out and
+/// solveSegmentPositions drives it out on the pseudo-velocities alone (ConstraintSolver). A row
+/// without pushOut has none (its nodes' own contacts correct the positions). Coulomb friction on
+/// the two tangents with the same weights, each with its own effective mass, the pair clamped to
+/// the disc |lambda_t| <= mu lambda_n. No restitution: a thread lands inelastically.
 ///
 /// Deterministic: rows are solved in array order.
 
@@ -40,6 +42,7 @@ struct SegmentContactRow {
     Vec3 normal = Vec3::UnitZ();  ///< from S towards the segment, unit
     Real separation = 0;          ///< along the normal at the step's start (m); < 0 penetrating
     Real friction = 0;            ///< Coulomb mu, >= 0
+    bool pushOut = true;          ///< pushes out depth beyond the slop (else velocity only)
     Real normalImpulse = 0;       ///< accumulated (N s): warm start in, result out
     std::array<Real, 2> tangentImpulse{};  ///< along tangents[0], tangents[1] (N s)
 
@@ -47,12 +50,18 @@ struct SegmentContactRow {
     std::array<Vec3, 2> tangents{Vec3::UnitX(), Vec3::UnitY()};
     Real normalMass = 0;                ///< 1 / K along the normal (kg)
     std::array<Real, 2> tangentMass{};  ///< 1 / K along each tangent (kg)
+    Real positionImpulse = 0;           ///< solveSegmentPositions' accumulated push (N s)
 };
 
 /// Tangent bases and effective masses of every row, then the warm start (each row's cached
 /// impulses applied to the bodies, or dropped when `warmStart` is off).
 void prepareSegmentContacts(std::span<SolverBody> bodies, std::span<SegmentContactRow> rows,
                             bool warmStart);
+
+/// Split impulse's position pass for the rows: `iterations` sweeps on the pseudo-velocities of
+/// `bodies`, each row with pushOut driving the depth beyond the slop out at factor / h.
+void solveSegmentPositions(std::span<SolverBody> bodies, std::span<SegmentContactRow> rows,
+                           Real factor, Real inverseH, Real slop, int iterations);
 
 /// One projected Gauss-Seidel sweep over the rows with the given bias factor and slop (m), as
 /// the contacts'; returns the largest velocity change an impulse made (m/s).
