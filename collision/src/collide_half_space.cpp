@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "clipping.h"
 #include "pair_routines.h"
@@ -23,6 +24,14 @@ namespace {
 /// (0.3 mm for a 1 m radius), so that point is offered too: the reduction keeps it only when it
 /// is more than kCapDepthTolerance deeper than all four (issue 20: the depth within 1e-6 m).
 constexpr Real kFlatSine = 1e-3;
+
+/// At and above this sine of the angle between a cylinder's axis and the plane normal (45
+/// degrees), the cylinder faces the plane with its side: its contact is the line between the
+/// caps' deepest rim points, and the rim's other points are not offered. They cannot come down
+/// onto the plane without the cylinder turning onto its cap, yet its spin about its own axis
+/// moves them along the normal: within a wide speculative margin (a fast roll), they held the
+/// spinning rim off the plane and took the place of the line's far end in the reduction.
+constexpr Real kSideSine = std::numbers::sqrt2 / 2;
 
 /// The half-space's boundary in world coordinates: points x with normal . x = offset; the solid
 /// is below.
@@ -106,9 +115,12 @@ void addCylinder(const Cylinder& cylinder, const Transform& pose, const Plane& p
     const Vec3 deepest = pose.rotation * Vec3(down.x() / tilt, down.y() / tilt, 0);
     const Vec3 side = axis.cross(deepest);
     const std::array<Vec3, 4> rim{deepest, side, -deepest, -side};
+    // Lying nearer its side than its cap, the cylinder's supporting feature is the line between
+    // the caps' deepest points.
+    const std::size_t rimPoints = tilt < kSideSine ? 4 : 1;
     for (std::uint32_t cap = 0; cap < 2; ++cap) {
         const Vec3 center = pose.position + (cap == 0 ? -1 : 1) * cylinder.halfLength * axis;
-        for (std::size_t k = 0; k < 4; ++k)
+        for (std::size_t k = 0; k < rimPoints; ++k)
             candidates.offer(center + cylinder.radius * rim[k], margin,
                              4 + 4 * cap + static_cast<std::uint32_t>(k));
     }
