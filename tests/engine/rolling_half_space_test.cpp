@@ -83,7 +83,8 @@ Real exactSeparation(const Cylinder& c, const Transform& pose) {
 
 // 2,000 random poses touching or up to 1 mm into a half-space: the normal is the plane's, the
 // deepest point at the true depth within 1e-6 m, no point deeper; lying within 45 degrees of
-// the plane, the contact is the line's two ends (or its one end that is within the margin).
+// the plane, the contact is the line's two ends (or its one end that is within the margin), also
+// within a margin of twice the radius.
 TEST(RollingHalfSpace, CylinderOnAHalfSpaceAtRandomPoses) {
     std::mt19937 random(20);
     std::uniform_real_distribution<Real> unit(-1, 1);
@@ -116,6 +117,10 @@ TEST(RollingHalfSpace, CylinderOnAHalfSpaceAtRandomPoses) {
         if (axisUp < std::numbers::sqrt2 / 2) {
             ++lying;
             EXPECT_LE(m.pointCount, 2) << trial;
+            // Also within the margin of a fast roll (h |v| beyond the radius).
+            Manifold fast;
+            collide(c, pose, ground, groundPose, 2 * c.radius, fast);
+            EXPECT_LE(fast.pointCount, 2) << trial;
         }
     }
     EXPECT_GT(lying, 1000);
