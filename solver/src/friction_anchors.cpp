@@ -35,6 +35,20 @@ Real share(Real size, Real limit) {
     return limit > 0 ? size / limit : std::numeric_limits<Real>::infinity();
 }
 
+// Whether a point of the manifold uses at least kCrowdedShare of its disc: most manifolds do
+// not, and equilibrateFriction leaves them as they are (squares, so no root for each point).
+bool crowded(const ContactConstraint& c) {
+    for (int i = 0; i < c.pointCount; ++i) {
+        const ContactConstraintPoint& p = c.points[i];
+        const Real size2 =
+            p.tangentImpulse[0] * p.tangentImpulse[0] + p.tangentImpulse[1] * p.tangentImpulse[1];
+        const Real limit = kCrowdedShare * c.friction * p.normalImpulse;
+        if (size2 > 0 && (limit <= 0 || size2 >= limit * limit))
+            return true;
+    }
+    return false;
+}
+
 bool drifting(const ContactConstraint& c, const Vec3* drifts, Real deadband) {
     if (c.friction == 0)
         return false;
@@ -148,7 +162,7 @@ void FrictionAnchorPass::run(std::span<const SolverBody> bodies,
 // a = F / sum w_i, s = M / sum w_i |d_i|^2.
 void equilibrateFriction(ContactConstraint& c) {
     const int n = c.pointCount;
-    if (n < 2 || c.friction == 0)
+    if (n < 2 || c.friction == 0 || !crowded(c))
         return;
     std::array<Vec2, 4> d;
     Real load = 0;  // N s
