@@ -11,8 +11,9 @@ namespace {
 
 // Rounds of the tension-only active set at the first solve of a step. A net falling flat settles
 // in one or two; a crumpled one may flip a few threads back and forth, and the later sweeps'
-// clamping then takes over. 12, not 6: a tumbling net's discrete-gradient threads settle at 0.1 %
-// in 4-7 rounds a step (`net-energy`, omega_e h = 1.5-7); with 6 some fell back to implicit Euler.
+// clamping then takes over. 12, not 6: a tumbling net's discrete-gradient threads settled at 0.1 %
+// (the tolerance then) in 4-7 rounds a step (`net-energy`, omega_e h = 1.5-7); with 6 some fell
+// back to implicit Euler.
 constexpr int kActiveSetRounds = 12;
 
 // Velocity (m/s) below which a thread's push or pull does not change the active set.

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "refusal.h"
@@ -92,13 +94,10 @@ TEST(Net, DroppedFlatFallsLikeOneBody) {
 // awake: rotating nodes spun up by friction (up to 29 rad/s here, nothing damps a node's spin)
 // and the springs' block solve ending before the last contact sweep, which left six nodes
 // hanging in the gaps vibrating at 0.1-0.2 m/s for good. Both fixed: asleep by 5 s.
-// Undamped threads that the step does not resolve (omega_e h = 3: the discrete gradient) keep a
-// folding, tumbling net's energy through its catches and releases: kinetic energy about the
-// centre of mass at the scheme's level velocity (the step's velocity plus the carried halves,
-// SpringState::carried, over m: exact also for steps run as substeps, springs.h) plus the
-// threads' elastic energy stays within 1 % of its start. Measured 0.9971 ... 1.0007 with one
-// step a step; with the block of the base (no turn rows, 6 rounds) 0.149.
-TEST(Net, UnresolvedUndampedThreadsKeepTheirEnergy) {
+// The lowest and highest internal energy / its start of a 6 x 6 undamped net thrown open so
+// that it folds and tumbles (corners at 2 m/s, two lifted and two lowered at 1 m/s) over 3 s at
+// h = 1/60, taken at the discrete-gradient threads' level velocity (net-energy, validation).
+std::pair<Real, Real> thrownNetEnergyBand(Real omegaEH) {
     constexpr Real kH = 1.0 / 60, kMass = 0.01, kMesh = 0.05;
     WorldDef worldDef = testkit::weightlessWorld(kH);
     worldDef.enableSleep = false;
@@ -109,7 +108,7 @@ TEST(Net, UnresolvedUndampedThreadsKeepTheirEnergy) {
     def.meshSize = kMesh;
     def.node.mass = kMass;
     def.spreadSpeed = 2;
-    const Real omega = 3 / kH;
+    const Real omega = omegaEH / kH;
     def.thread.axialRigidity = omega * omega * kMass * kMesh;
     const Lumped net = createNet(world, def);
     const Real lift[4] = {1, -1, -1, 1};
@@ -151,11 +150,33 @@ TEST(Net, UnresolvedUndampedThreadsKeepTheirEnergy) {
     const Real e0 = energy();
     Real low = 1, high = 1;
     for (int i = 0; i < 180; ++i) {
-        ASSERT_TRUE(world.step().ok());
+        if (!world.step().ok())
+            return {0, std::numeric_limits<Real>::infinity()};
         const Real ratio = energy() / e0;
         low = std::min(low, ratio);
         high = std::max(high, ratio);
     }
+    return {low, high};
+}
+
+// Undamped threads that the step does not resolve (omega_e h = 3: the discrete gradient) keep a
+// folding, tumbling net's energy through its catches and releases: kinetic energy about the
+// centre of mass at the scheme's level velocity (the step's velocity plus the carried halves,
+// SpringState::carried, over m: exact also for steps run as substeps, springs.h) plus the
+// threads' elastic energy stays within 1 % of its start. Measured 0.9971 ... 1.0007 with one
+// step a step; with the block of the base (no turn rows, 6 rounds) 0.149; with substeps and the
+// rounds at 3e-4, 0.9995 ... 1.0000.
+TEST(Net, UnresolvedUndampedThreadsKeepTheirEnergy) {
+    const auto [low, high] = thrownNetEnergyBand(3);  // a thread's (omega h)^2 = 18
+    EXPECT_GE(low, 0.99);
+    EXPECT_LE(high, 1.01);
+}
+
+// Above Fox-Goodwin's fourth-order range a thread's trapezoidal catches lost the net's energy
+// (net-energy at omega_e h = 1: 0.04 of it left); the discrete gradient keeps it. Measured
+// 0.9999 ... 1.0001; on Fox-Goodwin with trapezoidal catches 0.156 ... 1.19.
+TEST(Net, CoarselyResolvedUndampedThreadsKeepTheirEnergy) {
+    const auto [low, high] = thrownNetEnergyBand(1);  // a thread's (omega h)^2 = 2
     EXPECT_GE(low, 0.99);
     EXPECT_LE(high, 1.01);
 }

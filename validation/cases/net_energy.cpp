@@ -144,7 +144,8 @@ EnergyRun runNet(double omegaEH, double duration) {
 CaseResult run(const CaseOptions& options) {
     CaseResult result;
     const double duration = options.fast ? 4 : 10;
-    const std::vector<double> omegaEHs = {0.1, 0.3, 0.5, 0.7, 0.85, 1, 1.5, 2, 3, 5, 7, 20, 100};
+    const std::vector<double> omegaEHs = {0.1, 0.2, 0.3, 0.5, 0.7, 0.85, 1,
+                                          1.5, 2,   3,   5,   7,   20,   100};
     double worstLow = 1, worstHigh = 1;
     bool finite = true;
     for (const double omegaEH : omegaEHs) {

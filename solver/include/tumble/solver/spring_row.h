@@ -48,8 +48,10 @@
 /// 60 s at 0.7); implicit Euler catches dissipated 98 % in 10 s from omega_e h = 0.7 and made
 /// the net-10 sweep's error 6x the trapezoidal catches' at h = 1/240 (`net-energy`).
 ///
-/// Unresolved undamped threads (4 <= (omega h)^2 <= 100, numericalDamping 0): the discrete
-/// gradient (`discreteGradient`). Why the three-level weights cannot serve them undamped: at
+/// Undamped threads past Fox-Goodwin's range (1.5 <= (omega h)^2 <= 100, numericalDamping 0):
+/// the discrete gradient (`discreteGradient`). Between 1.5 and 4 the trapezoidal catches above
+/// lost a tumbling net's energy (`net-energy` at omega_e h = 1, (omega h)^2 = 2: min E/E0 0.04;
+/// 0.9995 on the gradient). Why the three-level weights cannot serve them undamped: at
 /// large omega h a taut step's known levels pull with ~(1 - w1) h k C while the new level, which
 /// would push back, is cut off by the thread's max(C, 0), so a thread released from a stretch at
 /// rest reaches ~0.75 omega h times its true speed (measured: beta = 1/4 on unresolved threads
@@ -70,7 +72,7 @@
 ///     r = s^2 (h D' + c),  gamma = 2 / (h r),  bias = s (D + D' (c0 - c1*)) / r.
 /// The first guess solves the thread alone (threadStretchAlone: a scalar root); the block's
 /// active-set rounds linearise a thread again where the solved span misses the model by more
-/// than 0.1 % or turns m by more than 0.001 rad, and a thread still unsettled for the last round
+/// than 0.03 % or turns m by more than 3e-4 rad, and a thread still unsettled for the last round
 /// takes implicit Euler for the step. m's turn is in Newton's step too: two turn rows along t
 /// perpendicular to m* (lineariseThreadTurn) hold -(h/2) D (d1 - d1*) . t / (L0 + L1), nothing
 /// once the guess is right, and their impulse is part of the carried half. Left to the rounds
@@ -80,9 +82,9 @@
 /// 1D the converged scheme returns a bounce's and a release's speed exactly at every omega h (0.3
 /// ... 100). Limits, measured: above (omega h)^2 ~ 100 the rounds do not settle a tumbling net
 /// (`net-energy` at omega_e h = 10 grew without bound, with the Euler fallback 28x at 20), so the
-/// stiffest keep the damped weights; on resolved threads the midpoint's phase error (twice
-/// leapfrog's) made the net-10 sweep's error at 1/240 0.0209 m against the peers' 0.0195
-/// (Fox-Goodwin's 0.0063), so they keep the weights above.
+/// stiffest keep the damped weights; on threads in Fox-Goodwin's range the midpoint's phase
+/// error (twice leapfrog's) made the net-10 sweep's error at 1/240 ((omega h)^2 = 1.39) 0.0209 m
+/// against the peers' 0.0195 (Fox-Goodwin's 0.0063), so they keep the weights above.
 ///
 /// Deterministic: rows are solved in array order.
 
