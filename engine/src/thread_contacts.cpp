@@ -51,6 +51,30 @@ Touch nodeTouch(const BodyStore& bodies, const ContactManager& contacts, std::ui
     return touch;
 }
 
+// The row's separation and push-out from how its nodes touch its shape S (`touchA`, and
+// `touchB()` asked only when A touches). Where both nodes rest on S on the row's side, their
+// contacts carry the thread: the row allows a sag of up to one radius, 4 t (1 - t) r, and
+// pushes out no depth (velocity only; the nodes' contacts correct the positions). The chord
+// between two nodes resting on a convex wall of radius R lies L^2 / (8 R) inside the line of the
+// wall through them, and a capsule as thick as the nodes held them that far off it, where they
+// swung free (an 8 x 8 net on a 24-sided cylinder of r = 0.15 m: 12 mm/s after 2 s). The sag
+// alone, with the rows' push-out, stretched the threads over the cylinder's rim until they
+// slipped (energy gained); without the side test the net slid over dustbin-mesh's thin rim,
+// whose nodes rest on the wall's two faces. Where both nodes touch S at all (on any side) the
+// row pushes out no depth either: on a thin rim a thread between two nodes on its edge lies
+// along the wall with its axis ~1 mm off the wall's plane, its rows' face normal sideways;
+// their push, against the nodes' own contacts on the edge, held the rows at the slop and pumped
+// the net (an 8 x 8 net across an open 24-sided bin of r = 0.15 m: 3.1 mm/s after 2 s, kinetic
+// energy steady at 1e-4 - 7e-4 J over 6 s; without those rows' push below 0.05 mm/s).
+template <class TouchB>
+void setDepth(SegmentContactRow& row, Real separation, Real radius, Touch touchA,
+              const TouchB& touchB) {
+    const Touch b = touchA != Touch::None ? touchB() : Touch::None;
+    const bool resting = touchA == Touch::RestsOnSide && b == Touch::RestsOnSide;
+    row.separation = separation + (resting ? 4 * radius * row.t * (1 - row.t) : 0);
+    row.pushOut = touchA == Touch::None || b == Touch::None;
+}
+
 }  // namespace
 
 std::span<SegmentContactRow> ThreadContacts::build(const SpringStore& springs,
@@ -149,31 +173,9 @@ void ThreadContacts::collideThread(std::uint32_t index, const SpringStore& sprin
                 row.rB = world ? Vec3::Zero() : Vec3(pB - bodies.motion[b].center);
                 row.rS = point.position - bodies.motion[s].center;
                 row.normal = -manifold.normal;  // the manifold's runs from the capsule to S
-                // Where both nodes rest on S on this row's side, their contacts carry the
-                // thread: the row allows a sag of up to one radius, 4 t (1 - t) r, and pushes
-                // out no depth (velocity only; the nodes' contacts correct the positions).
-                // The chord between two nodes resting on a convex wall of radius R lies
-                // L^2 / (8 R) inside the line of the wall through them, and a capsule as thick
-                // as the nodes held them that far off it, where they swung free (an 8 x 8 net on
-                // a 24-sided cylinder of r = 0.15 m: 12 mm/s after 2 s). The sag alone, with the
-                // rows' push-out, stretched the threads over the cylinder's rim until they
-                // slipped (energy gained); without the side test the net slid over
-                // dustbin-mesh's thin rim, whose nodes rest on the wall's two faces.
-                // Where both nodes touch S at all (on any side) the row pushes out no depth
-                // either: on a thin rim a thread between two nodes on its edge lies along the
-                // wall with its axis ~1 mm off the wall's plane, its rows' face normal
-                // sideways; their push, against the nodes' own contacts on the edge, held the
-                // rows at the slop and pumped the net (an 8 x 8 net across an open 24-sided bin
-                // of r = 0.15 m: 3.1 mm/s after 2 s, kinetic energy steady at 1e-4 - 7e-4 J
-                // over 6 s; without those rows' push below 0.05 mm/s, the middle 8 mm lower).
-                const Touch touchA =
-                    shapedEnds ? nodeTouch(bodies, contacts, a, s, row.normal) : Touch::None;
-                const Touch touchB =
-                    shapedEnds ? nodeTouch(bodies, contacts, b, s, row.normal) : Touch::None;
-                const bool resting = touchA == Touch::RestsOnSide && touchB == Touch::RestsOnSide;
-                row.separation =
-                    point.separation + (resting ? 4 * def.contactRadius * t * (1 - t) : 0);
-                row.pushOut = touchA == Touch::None || touchB == Touch::None;
+                setDepth(row, point.separation, def.contactRadius,
+                         shapedEnds ? nodeTouch(bodies, contacts, a, s, row.normal) : Touch::None,
+                         [&] { return nodeTouch(bodies, contacts, b, s, row.normal); });
                 row.friction = mixFriction(def.contactFriction, shape.def.material.friction);
                 keys_.push_back(Cached{.spring = index, .slot = slot});
                 warmStart(row, index, slot, length, def.contactRadius);
