@@ -34,20 +34,17 @@ Transform segmentPose(const Vec3& a, const Vec3& b) {
 // it (their normals are the wall's, the rim's row points up).
 enum class Touch { None, Touches, RestsOnSide };
 
-Touch nodeTouch(const BodyStore& bodies, const ContactManager& contacts, std::uint32_t index,
-                std::uint32_t s, const Vec3& normal) {
+Touch nodeTouch(std::span<const ThreadContacts::NodeContact> nodeContacts, std::uint32_t s,
+                const Vec3& normal) {
     constexpr Real kSameSide = 0.75;  // cos ~41 degrees
     Touch touch = Touch::None;
-    contacts.forEachContact(
-        bodies, index, [&](std::uint32_t slot, const Contact& contact, std::uint32_t other) {
-            if (touch == Touch::RestsOnSide || other != s || !contacts.isActive(slot) ||
-                contact.manifold.pointCount == 0)
-                return;
-            // The manifold's normal runs from A to B.
-            const bool nodeIsA = bodies.indexOf(contact.bodyA) == index;
-            const Vec3 out = nodeIsA ? Vec3(-contact.manifold.normal) : contact.manifold.normal;
-            touch = out.dot(normal) > kSameSide ? Touch::RestsOnSide : Touch::Touches;
-        });
+    for (const ThreadContacts::NodeContact& contact : nodeContacts) {
+        if (contact.body != s)
+            continue;
+        if (contact.out.dot(normal) > kSameSide)
+            return Touch::RestsOnSide;
+        touch = Touch::Touches;
+    }
     return touch;
 }
 
@@ -86,6 +83,8 @@ std::span<SegmentContactRow> ThreadContacts::build(const SpringStore& springs,
     keys_.clear();
     lent_.assign(cache_.size(), 0);
     cursor_ = 0;
+    nodeContacts_.clear();
+    gathered_.assign(bodies.count(), Gathered{});
     if (springs.contactCount == 0)
         return {};
     for (std::uint32_t i = 0; i < springs.count(); ++i) {
@@ -173,15 +172,36 @@ void ThreadContacts::collideThread(std::uint32_t index, const SpringStore& sprin
                 row.rB = world ? Vec3::Zero() : Vec3(pB - bodies.motion[b].center);
                 row.rS = point.position - bodies.motion[s].center;
                 row.normal = -manifold.normal;  // the manifold's runs from the capsule to S
-                setDepth(row, point.separation, def.contactRadius,
-                         shapedEnds ? nodeTouch(bodies, contacts, a, s, row.normal) : Touch::None,
-                         [&] { return nodeTouch(bodies, contacts, b, s, row.normal); });
+                setDepth(
+                    row, point.separation, def.contactRadius,
+                    shapedEnds ? nodeTouch(nodeContacts(a, bodies, contacts), s, row.normal)
+                               : Touch::None,
+                    [&] { return nodeTouch(nodeContacts(b, bodies, contacts), s, row.normal); });
                 row.friction = mixFriction(def.contactFriction, shape.def.material.friction);
                 keys_.push_back(Cached{.spring = index, .slot = slot});
                 warmStart(row, index, slot, length, def.contactRadius);
             }
         }
     }
+}
+
+std::span<const ThreadContacts::NodeContact> ThreadContacts::nodeContacts(
+    std::uint32_t index, const BodyStore& bodies, const ContactManager& contacts) {
+    Gathered& range = gathered_[index];
+    if (range.begin == Gathered::kNot) {
+        range.begin = static_cast<std::uint32_t>(nodeContacts_.size());
+        contacts.forEachContact(
+            bodies, index, [&](std::uint32_t slot, const Contact& contact, std::uint32_t other) {
+                if (!contacts.isActive(slot) || contact.manifold.pointCount == 0)
+                    return;
+                // The manifold's normal runs from A to B.
+                const bool nodeIsA = bodies.indexOf(contact.bodyA) == index;
+                nodeContacts_.push_back(
+                    {other, nodeIsA ? Vec3(-contact.manifold.normal) : contact.manifold.normal});
+            });
+        range.end = static_cast<std::uint32_t>(nodeContacts_.size());
+    }
+    return {nodeContacts_.data() + range.begin, nodeContacts_.data() + range.end};
 }
 
 void ThreadContacts::warmStart(SegmentContactRow& row, std::uint32_t spring, std::uint32_t slot,
