@@ -1,6 +1,7 @@
 // A net whose threads collide (ThreadDef::collide) comes to rest where it is draped: over a box's
-// edge, over a faceted cylinder of triangles (its skirt on the curved wall, as dustbin-mesh's)
-// and flat on a half-space.
+// edge, over a faceted cylinder of triangles (its skirt on the curved wall, as dustbin-mesh's),
+// across the opening of an open bin of thin triangle walls (dustbin-mesh's rim) and flat on a
+// half-space.
 
 #include <gtest/gtest.h>
 
@@ -16,13 +17,14 @@
 namespace tumble {
 namespace {
 
-enum class Support { BoxEdge, MeshCylinder, HalfSpace };
+enum class Support { BoxEdge, MeshCylinder, OpenBin, HalfSpace };
 
 constexpr Real kCylinderRadius = 0.15;
 constexpr Real kTop = 0.5;  // of the box and the cylinder (m)
 
-// A closed cylinder of `sides` facets about z, from the ground to kTop.
-TriangleMeshData cylinder(int sides) {
+// A cylinder of `sides` facets about z, from the ground to kTop: closed by a lid, or open (the
+// wall alone, of no thickness, as dustbin-mesh's bin).
+TriangleMeshData cylinder(int sides, bool lid = true) {
     TriangleMeshData mesh;
     mesh.vertices.push_back(Vec3(0, 0, kTop));
     for (int k = 0; k < sides; ++k) {
@@ -36,7 +38,8 @@ TriangleMeshData cylinder(int sides) {
         const std::uint32_t b0 = bottom(k), b1 = bottom(k + 1);
         mesh.triangles.push_back({b0, b1, b1 + 1});
         mesh.triangles.push_back({b0, b1 + 1, b0 + 1});
-        mesh.triangles.push_back({0, b0 + 1, b1 + 1});
+        if (lid)
+            mesh.triangles.push_back({0, b0 + 1, b1 + 1});
     }
     return mesh;
 }
@@ -55,9 +58,10 @@ Lumped build(World& world, Support support, int n) {
         def.localPose.position = Vec3(-0.5, 0, kTop / 2);
         world.createShape(box, def);
         center = Vec3(0.03, 0, kTop + 0.05);
-    } else if (support == Support::MeshCylinder) {
+    } else if (support == Support::MeshCylinder || support == Support::OpenBin) {
         const BodyId body = world.createBody(ground);
-        world.createShape(body, ShapeDef{.geometry = TriangleMesh::fromData(cylinder(24)),
+        const bool lid = support == Support::MeshCylinder;
+        world.createShape(body, ShapeDef{.geometry = TriangleMesh::fromData(cylinder(24, lid)),
                                          .material = Material{.friction = 0.4}});
         center = Vec3(0, 0, kTop + 0.05);
     }
@@ -94,17 +98,26 @@ TEST_P(ThreadRest, ADrapedNetComesToRest) {
     for (int step = 0; step < 240; ++step)
         ASSERT_TRUE(world.step().ok());
     EXPECT_LT(medianSpeed(world, net), 1e-3);
+    if (GetParam() == Support::OpenBin) {
+        // Held across the opening by the threads on the rim: the middle node no lower than the
+        // net's own mesh size below the rim, not on the ground inside.
+        const Vec3 middle = world.position(net.nodes[4 * 8 + 4]);
+        EXPECT_GT(middle.z(), kTop - 0.1);
+        EXPECT_LT(std::hypot(middle.x(), middle.y()), kCylinderRadius);
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Supports, ThreadRest,
                          ::testing::Values(Support::BoxEdge, Support::MeshCylinder,
-                                           Support::HalfSpace),
+                                           Support::OpenBin, Support::HalfSpace),
                          [](const auto& param) {
                              switch (param.param) {
                                  case Support::BoxEdge:
                                      return std::string("BoxEdge");
                                  case Support::MeshCylinder:
                                      return std::string("MeshCylinder");
+                                 case Support::OpenBin:
+                                     return std::string("OpenBin");
                                  default:
                                      return std::string("HalfSpace");
                              }
