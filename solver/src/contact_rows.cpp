@@ -47,20 +47,21 @@ namespace {
 
 // L L' x = -c on the active rows (forward, then back substitution, in solveNormalBlock's
 // order); zero on the others.
-[[gnu::always_inline]] inline void solveFactoredLanes(const Lane* l, const Lane (&c)[4],
+[[gnu::always_inline]] inline void solveFactoredLanes(const Lane* l, const Lane* inverseDiagonal,
+                                                      const Lane (&c)[4],
                                                       const LaneMask (&active)[4], Lane (&x)[4]) {
     Lane y[4];
     for (int i = 0; i < 4; ++i) {
         Lane sum = select(active[i], -c[i], Lane{});
         for (int p = 0; p < i; ++p)
             sum -= l[4 * i + p] * y[p];
-        y[i] = sum / l[5 * i];
+        y[i] = sum * inverseDiagonal[i];
     }
     for (int i = 3; i >= 0; --i) {
         Lane sum = y[i];
         for (int p = i + 1; p < 4; ++p)
             sum -= l[4 * p + i] * x[p];
-        x[i] = sum / l[5 * i];
+        x[i] = sum * inverseDiagonal[i];
     }
 }
 
@@ -347,7 +348,7 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
                              k[4 * i + 3] * old[3]);
         }
         Lane x[4];
-        solveFactoredLanes(block->factor, c, active, x);
+        solveFactoredLanes(block->factor, block->inverseDiagonal, c, active, x);
         LaneMask ok;
         checkActiveSetLanes(k, bundle.hasPoint, c, active, x, ok);
         for (int lane = 0; lane < kWidth; ++lane)
@@ -420,14 +421,18 @@ Real ContactRows::solveNormalsAlone(Bundle& bundle, int lane, ContactConstraint&
     for (int i = 0; i < c.pointCount; ++i)
         points_[bundle.firstPoint + i].normalImpulse[lane] = c.points[i].normalImpulse;
     // The factor it cached, embedded in the identity.
-    Lane* embedded = blocks_[bundle.block].factor;
+    Block& block = blocks_[bundle.block];
+    Lane* embedded = block.factor;
     for (int e = 0; e < 16; ++e)
         embedded[e][lane] = e % 5 == 0 ? 1 : 0;
+    for (Lane& inverse : block.inverseDiagonal)
+        inverse[lane] = 1;
     bundle.factorSet[lane] = factor.set;
     if (factor.set != NormalFactor::kNone) {
         for (int i = 0; i < factor.size; ++i) {
             for (int j = 0; j <= i; ++j)
                 embedded[4 * factor.rows[i] + factor.rows[j]][lane] = factor.l[i][j];
+            block.inverseDiagonal[factor.rows[i]][lane] = factor.inverseDiagonal[i];
         }
     }
     return change;
