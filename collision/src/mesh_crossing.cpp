@@ -56,7 +56,8 @@ bool crossingOverBorder(const Shape& surface, const Transform& pose, const Vec3&
     const Aabb box{Vec3(segment.start.cwiseMin(segment.end) - reach),
                    Vec3(segment.start.cwiseMax(segment.end) + reach)};
     bool pierced = false;
-    BorderEdge best;
+    // Only an edge within reach: a closed mesh's far border (a wall's foot) is no way out.
+    BorderEdge best{.squaredGap = (length + radius) * (length + radius)};
     detail::forEachTriangle(*mesh->data, box, [&](const MeshTriangle& t) {
         pierced = pierced || pierces(t, segment.start, segment.end);
         for (std::size_t k = 0; k < 3; ++k) {
@@ -72,7 +73,7 @@ bool crossingOverBorder(const Shape& surface, const Transform& pose, const Vec3&
                         squaredGap};
         }
     });
-    if (!pierced || best.squaredGap == INFINITY)
+    if (!pierced || best.edge.squaredNorm() == 0)
         return false;
     Vec3 normal = segment.direction().cross(best.edge);
     if (!(normal.squaredNorm() >
