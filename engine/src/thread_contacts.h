@@ -83,19 +83,17 @@ private:
     std::vector<Cached> cache_;       ///< the previous step's solved rows, by spring then slot
     std::vector<std::uint8_t> lent_;  ///< scratch: cache_ entries already lent this step
     std::size_t cursor_ = 0;          ///< scratch: first cache_ entry of the spring being built
-    /// Node `index`'s active contacts, gathered once per step on first asking: walking the
-    /// contact list for every row's two nodes was ~9 % of dustbin-mesh's step.
+    /// Node `index`'s active contacts with points; every body's are gathered on the step's first
+    /// asking, from the touching list (gatherNodeContacts).
     std::span<const NodeContact> nodeContacts(std::uint32_t index, const BodyStore& bodies,
                                               const ContactManager& contacts);
+    void gatherNodeContacts(const BodyStore& bodies, const ContactManager& contacts);
 
-    struct Gathered {
-        static constexpr std::uint32_t kNot = ~std::uint32_t(0);
-        std::uint32_t begin = kNot;  ///< into nodeContacts_
-        std::uint32_t end = kNot;
-    };
     std::vector<std::uint32_t> shapes_;      ///< scratch: candidate shape slots of one thread
-    std::vector<NodeContact> nodeContacts_;  ///< scratch: the nodes' contacts gathered so far
-    std::vector<Gathered> gathered_;         ///< scratch: per body, its range in nodeContacts_
+    std::vector<NodeContact> nodeContacts_;  ///< scratch: every body's, by body
+    std::vector<std::uint32_t> nodeFirst_;   ///< scratch: body i's are [first[i], first[i + 1])
+    std::vector<std::uint32_t> nodeFill_;    ///< scratch: gatherNodeContacts' write positions
+    bool gathered_ = false;                  ///< nodeContacts_ holds this step's
     ManifoldSet manifolds_;                  ///< scratch
 };
 
