@@ -70,13 +70,29 @@ void sweepImpulse(std::span<SolverBody> bodies, const SegmentContactRow& row, co
         applyImpulse(bodies[row.bodyS], -p, row.rS);
 }
 
-// Whether (a, b) lies strictly inside the disc of radius `limit`, decided without std::hypot
-// (4 % of a dustbin-mesh step) where the squares leave no doubt: their rounding (a few ulp)
-// is far inside the 1e-9 margin, and limit^2 above 1e-290 keeps them off the subnormals. Where
-// in doubt, hypot decides as before, so the result is bitwise the same.
-bool clearlyInside(Real a, Real b, Real limit) {
+// (a, b) clamped to the disc of radius `limit` (+0 or above: mu >= 0 times a max(0, ...)
+// impulse), bitwise as by std::hypot, which was 4 % of a dustbin-mesh step and is now asked only
+// where in doubt. Strictly inside when the squares say so with room to spare: their rounding (a
+// few ulp) is far inside the 1e-9 margin, and limit^2 above 1e-290 keeps them off the
+// subnormals. On a zero disc (most rows hold no normal impulse) hypot's size only decides
+// whether to scale, by 0 / size = +0: when it is > 0, i.e. either is infinite or neither is NaN
+// and one is non-zero.
+void clampToDisc(std::array<Real, 2>& next, Real limit) {
+    const Real a = next[0], b = next[1];
+    if (limit == 0) {
+        if (std::isinf(a) || std::isinf(b) ||
+            (!std::isnan(a) && !std::isnan(b) && (a != 0 || b != 0)))
+            next = {a * Real(0), b * Real(0)};
+        return;
+    }
     const Real squared = limit * limit;
-    return squared > 1e-290 && a * a + b * b < squared * (1 - 1e-9);
+    if (squared > 1e-290 && a * a + b * b < squared * (1 - 1e-9))
+        return;
+    const Real size = std::hypot(a, b);
+    if (size > limit) {
+        const Real scale = size > 0 ? limit / size : 0;
+        next = {a * scale, b * scale};
+    }
 }
 
 }  // namespace
@@ -141,13 +157,7 @@ Real solveSegmentContacts(std::span<SolverBody> bodies, std::span<SegmentContact
         for (int k = 0; k < 2; ++k)
             next[k] = row.tangentImpulse[k] - row.tangentMass[k] * slip.dot(row.tangents[k]);
         const Real limit = row.friction * row.normalImpulse;
-        if (!clearlyInside(next[0], next[1], limit)) {
-            const Real size = std::hypot(next[0], next[1]);
-            if (size > limit) {
-                const Real scale = size > 0 ? limit / size : 0;
-                next = {next[0] * scale, next[1] * scale};
-            }
-        }
+        clampToDisc(next, limit);
         sweepImpulse(bodies, row,
                      (next[0] - row.tangentImpulse[0]) * row.tangents[0] +
                          (next[1] - row.tangentImpulse[1]) * row.tangents[1]);
