@@ -65,6 +65,9 @@ public:
 
 private:
     friend struct CheckpointAccess;  ///< checkpoint.cpp saves and restores the cache
+    /// The static and kinematic shapes' slots into fixedShapes_, in slot order, up to one past
+    /// the number candidates() tests one by one.
+    void listFixedShapes(const BodyStore& bodies, const ShapeStore& shapes);
     /// Static and kinematic shapes whose tight box meets `box`, in slot order, into shapes_;
     /// half-spaces only when `planes`.
     void candidates(const Aabb& box, bool planes, const BodyStore& bodies, const ShapeStore& shapes,
@@ -89,12 +92,13 @@ private:
                                               const ContactManager& contacts);
     void gatherNodeContacts(const BodyStore& bodies, const ContactManager& contacts);
 
-    std::vector<std::uint32_t> shapes_;      ///< scratch: candidate shape slots of one thread
-    std::vector<NodeContact> nodeContacts_;  ///< scratch: every body's, by body
-    std::vector<std::uint32_t> nodeFirst_;   ///< scratch: body i's are [first[i], first[i + 1])
-    std::vector<std::uint32_t> nodeFill_;    ///< scratch: gatherNodeContacts' write positions
-    bool gathered_ = false;                  ///< nodeContacts_ holds this step's
-    ManifoldSet manifolds_;                  ///< scratch
+    std::vector<std::uint32_t> shapes_;       ///< scratch: candidate shape slots of one thread
+    std::vector<std::uint32_t> fixedShapes_;  ///< scratch: listFixedShapes'
+    std::vector<NodeContact> nodeContacts_;   ///< scratch: every body's, by body
+    std::vector<std::uint32_t> nodeFirst_;    ///< scratch: body i's are [first[i], first[i + 1])
+    std::vector<std::uint32_t> nodeFill_;     ///< scratch: gatherNodeContacts' write positions
+    bool gathered_ = false;                   ///< nodeContacts_ holds this step's
+    ManifoldSet manifolds_;                   ///< scratch
 };
 
 }  // namespace tumble
