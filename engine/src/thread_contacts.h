@@ -7,9 +7,10 @@
 /// and is no body, so its contacts are rows of their own (solver/segment_contact_row.h) that
 /// split each impulse between the thread's nodes by the contact point's parameter t. Found
 /// each step from the springs: the segment's box (grown by the radius and the speculative
-/// margin) is queried in the broadphase and the capsule collided with every static or kinematic
-/// shape it meets, through the ordinary narrowphase. Where a node has shapes of its own, the
-/// capsule starts a radius away from it: what lies nearer is the node's own contacts'.
+/// margin) is tested against the static and kinematic shapes (box by box when they are few, else
+/// through the broadphase) and the capsule collided with every one it meets, through the
+/// ordinary narrowphase. Where a node has shapes of its own, the capsule starts a radius away
+/// from it: what lies nearer is the node's own contacts'.
 ///
 /// Rows are warm started as the contacts are: each takes the impulses the previous step's
 /// nearest row of the same spring and shape ended with (its point within a contact radius along
