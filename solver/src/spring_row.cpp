@@ -230,28 +230,6 @@ void lineariseLevelRow(const SolverBody& a, const SolverBody& b, SpringRow& row,
                resistance;
 }
 
-// Whether the form's row at the solved end span misses its direction or its G by more than the
-// tolerances (as a discrete-gradient row's).
-bool levelRowStale(const SpringRow& row, Real h, const Vec3& endSpan) {
-    const Vec3 mid = row.span - h * row.startVelocity + endSpan;
-    const Real midLength = mid.norm();
-    if (!(midLength > kMinimumLength))
-        return false;
-    if ((mid / midLength - row.direction).norm() > kDirectionTolerance)
-        return true;
-    const Real xm = row.lastStretch;
-    const Real x0 = row.length - row.restLength;
-    const Real x1 = endSpan.norm() - row.restLength;
-    const Real floor = kCatchFloor * row.restLength;
-    if (xm < 0 && x1 <= floor && row.linearisedAt <= floor)
-        return false;  // linearised at the floor already
-    const Gradient at = levelGradient(xm, x0, row.linearisedAt);
-    const Real model = at.value + at.slope * (x1 - row.linearisedAt);
-    const Real exact = levelGradient(xm, x0, x1).value;
-    return std::abs(model - exact) >
-           kGradientTolerance * std::max(std::abs(exact), std::abs(model));
-}
-
 // A resolved undamped thread (spring_row.h): made the form's row when a level is slack at its
 // end stretch alone (the root of x1 + (omega h)^2 G(x1) = its stretch at constant velocity),
 // else left to Fox-Goodwin's weights, marked `mayRelease`. Returns whether it is the form's.
@@ -315,23 +293,27 @@ void releaseThreadRow(SolverBody& a, SolverBody& b, SpringRow& row, Real h, cons
 bool threadRowStale(const SolverBody& a, const SolverBody& b, const SpringRow& row, Real h,
                     Vec3& endSpan) {
     threadRowEndStretch(a, b, row, h, endSpan);
-    if (row.levelGradient)
-        return levelRowStale(row, h, endSpan);
-    const Vec3 mid = row.span + endSpan;
+    // The direction over the scheme's two levels: d0 and d1, or a three-level form's d_-1 and d1.
+    const Vec3 mid =
+        (row.levelGradient ? Vec3(row.span - h * row.startVelocity) : row.span) + endSpan;
     const Real midLength = mid.norm();
     if (!(midLength > kMinimumLength))
         return false;
     if ((mid / midLength - row.direction).norm() > kDirectionTolerance)
         return true;
-    const Real k = row.stiffness;
     const Real c0 = row.length - row.restLength;
     const Real c1 = endSpan.norm() - row.restLength;
     const Real floor = kCatchFloor * row.restLength;
-    if (c0 < 0 && c1 <= floor && row.linearisedAt <= floor)
+    const Real before = row.levelGradient ? row.lastStretch : c0;  // slack: a catch
+    if (before < 0 && c1 <= floor && row.linearisedAt <= floor)
         return false;  // linearised at the floor already (lineariseThreadRow)
-    const Gradient at = threadGradient(k, c0, row.linearisedAt);
+    const auto gradientAt = [&](Real c) {
+        return row.levelGradient ? levelGradient(row.lastStretch, c0, c)
+                                 : threadGradient(row.stiffness, c0, c);
+    };
+    const Gradient at = gradientAt(row.linearisedAt);
     const Real model = at.value + at.slope * (c1 - row.linearisedAt);
-    const Real exact = threadGradient(k, c0, c1).value;
+    const Real exact = gradientAt(c1).value;
     return std::abs(model - exact) >
            kGradientTolerance * std::max(std::abs(exact), std::abs(model));
 }
