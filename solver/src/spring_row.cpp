@@ -425,15 +425,9 @@ void prepareSpringRow(const SolverBody& a, const SolverBody& b, SpringRow& row, 
     const Real startRate = row.direction.dot(row.startVelocity);  // J v0
     const Real stretch = row.length - row.restLength;
     const bool split = row.tensionOnly && row.spectralRadius > 0;
-    // A resolved undamped thread's levels by their true lengths (spring_row.h): x_-1 exactly, x1
-    // its start line's stretch plus the same turn's excess (the level before's, |d_-1| - n .
-    // d_-1), so the start line's shortfall does not pump energy through its taut steps.
-    const Real lineLast = stretch - h * startRate;
-    const Real turnExcess =
-        row.mayRelease ? (row.span - h * row.startVelocity).norm() - row.restLength - lineLast : 0;
     if (split && usable) {
         // The known levels with the thread's own law, k max(C, 0) (see above).
-        const Real lastStretch = lineLast + turnExcess;
+        const Real lastStretch = stretch - h * startRate;
         row.knownImpulse = -h * row.stiffness *
                            ((1 - next - last) * std::max<Real>(stretch, 0) +
                             last * std::max<Real>(lastStretch, 0));
@@ -445,8 +439,7 @@ void prepareSpringRow(const SolverBody& a, const SolverBody& b, SpringRow& row, 
     row.softness = 1 / (h * resistance);
     row.mass = 1 / (inverseMass + row.softness);
     if (split) {
-        row.bias = (row.stiffness * next * (stretch + turnExcess) +
-                    row.damping * (1 - rateNext) * startRate) /
+        row.bias = (row.stiffness * next * stretch + row.damping * (1 - rateNext) * startRate) /
                    resistance;
         return;
     }
