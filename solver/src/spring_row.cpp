@@ -191,38 +191,6 @@ Real threadRowEndStretch(const SolverBody& a, const SolverBody& b, const SpringR
 
 namespace {
 
-// The form's pull per unit k with its taut boundaries measured as Fox-Goodwin measures them: a
-// boundary between two steps taut at both of its levels has Phi(n . d_earlier - L0, x_later),
-// n the later step's start line (its own known level's convention). A catch's end and a
-// release's start are such boundaries; elsewhere (x_-1 and x1 taut, or x0 slack) the true
-// lengths (levelGradient). Else a hand-over gains or loses (k/2) dPhi L (1 - cos theta).
-Gradient formGradient(const SpringRow& row, Real h, Real x1, const Vec3& end) {
-    constexpr Real beta = kFoxGoodwin;
-    const Real xm = row.lastStretch;
-    const Real x0 = row.length - row.restLength;
-    if (!(x0 > 0) || (xm > 0 && x1 > 0) || (xm <= 0 && x1 <= 0))
-        return levelGradient(xm, x0, x1);
-    const auto phi = [](Real p, Real q) {
-        p = std::max<Real>(p, 0);
-        q = std::max<Real>(q, 0);
-        return beta * (p * p + q * q) + (1 - 2 * beta) * p * q;
-    };
-    const Real run = x1 - xm;
-    if (xm > 0) {  // released: the start's boundary along the start line
-        const Vec3 last = row.span - h * row.startVelocity;
-        const Real along = last.dot(row.span) / row.length - row.restLength;
-        const Real value = (beta * x0 * x0 - phi(along, x0)) / run;
-        return {value, -value / run};
-    }
-    // caught, taut at x0: the end's boundary along the end's line
-    const Real endLength = end.norm();
-    const Real along =
-        endLength > kMinimumLength ? end.dot(row.span) / endLength - row.restLength : x0;
-    const Real a = std::max<Real>(along, 0);
-    const Real value = (phi(along, x1) - beta * x0 * x0) / run;
-    return {value, ((2 * beta * x1 + (1 - 2 * beta) * a) - value) / run};
-}
-
 // The three-level form's row (spring_row.h) linearised at the end span d1*, along Gonzalez's
 // m = (d_-1 + d1*) / (L_-1 + L1*) = s n: r = h k s^2 G', bias = k s (G + G' (x_-1 + h s w0 -
 // x1*)) / r.
@@ -240,7 +208,7 @@ void lineariseLevelRow(const SolverBody& a, const SolverBody& b, SpringRow& row,
               (row.restLength + floor);
         x1 = floor;
     }
-    const Gradient g = formGradient(row, h, x1, end);
+    const Gradient g = levelGradient(xm, x0, x1);
     const Vec3 mid = row.span - h * row.startVelocity + end;
     const Real midLength = mid.norm();
     if (midLength > kMinimumLength)
@@ -340,7 +308,7 @@ bool threadRowStale(const SolverBody& a, const SolverBody& b, const SpringRow& r
     if (before < 0 && c1 <= floor && row.linearisedAt <= floor)
         return false;  // linearised at the floor already (lineariseThreadRow)
     const auto gradientAt = [&](Real c) {
-        return row.levelGradient ? formGradient(row, h, c, endSpan)
+        return row.levelGradient ? levelGradient(row.lastStretch, c0, c)
                                  : threadGradient(row.stiffness, c0, c);
     };
     const Gradient at = gradientAt(row.linearisedAt);
