@@ -230,40 +230,27 @@ void lineariseLevelRow(const SolverBody& a, const SolverBody& b, SpringRow& row,
                resistance;
 }
 
-// A resolved undamped thread (spring_row.h): made the form's row when a level is slack at its
-// end stretch alone (the root of x1 + (omega h)^2 G(x1) = its stretch at constant velocity),
-// else left to Fox-Goodwin's weights, marked `mayRelease`. Returns whether it is the form's.
+// A resolved undamped thread (experiment: the form on every step, s-band3): the form's row by the
+// true lengths, linearised at its end stretch alone (the root of x1 + (omega h)^2 G(x1) = its
+// stretch at constant velocity; linear where the three levels are taut).
 bool prepareResolvedThread(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h,
                            Real squared) {
     row.span = row.length * row.direction;
     const Real x0 = row.length - row.restLength;
-    // Along the start line first (no root: most threads of a net are taut at all three, where
-    // the root is Fox-Goodwin's, linear), the stretches no more than the true ones.
-    const Real change = h * row.direction.dot(row.startVelocity);
-    const Real linearLast = x0 - change;
-    const Real taut =
-        (x0 + change - squared * (kFoxGoodwin * linearLast + (1 - 2 * kFoxGoodwin) * x0)) /
-        (1 + squared * kFoxGoodwin);
-    const bool linearTaut = linearLast > 0 && x0 > 0 && taut > 0;
+    row.lastStretch = (row.span - h * row.startVelocity).norm() - row.restLength;
+    const Real xm = row.lastStretch;
+    const Vec3 free = row.span + h * row.startVelocity;
+    const Real freeLength = free.norm();
+    const Real freeStretch = freeLength - row.restLength;
+    // Taut at all three (most threads of a net): the root is Fox-Goodwin's, linear.
+    const Real taut = (freeStretch - squared * (kFoxGoodwin * xm + (1 - 2 * kFoxGoodwin) * x0)) /
+                      (1 + squared * kFoxGoodwin);
     Real x1 = taut;
-    row.lastStretch = linearLast;
-    Vec3 free = Vec3::Zero();
-    Real freeLength = 0;
-    if (!linearTaut) {  // the true lengths, and the root
-        row.lastStretch = (row.span - h * row.startVelocity).norm() - row.restLength;
-        const Real xm = row.lastStretch;
-        free = row.span + h * row.startVelocity;
-        freeLength = free.norm();
-        const Real freeStretch = freeLength - row.restLength;
+    if (!(xm > 0 && x0 > 0 && taut > 0)) {
         const auto gradientAt = [&](Real c1) { return levelGradient(xm, x0, c1); };
         const Real lo = freeStretch - squared * levelGradient(xm, x0, freeStretch).value;
         x1 = stretchAlone(gradientAt, lo, freeStretch, squared,
                           kGradientTolerance * kCatchFloor * row.restLength);
-    }
-    if (row.lastStretch > 0 && x0 > 0 && x1 > 0) {
-        row.mayRelease = true;
-        row.catching = false;
-        return false;
     }
     row.levelGradient = true;
     const Real toEnd = freeLength > kMinimumLength ? (row.restLength + x1) / freeLength : 1;
