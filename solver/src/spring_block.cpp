@@ -482,18 +482,6 @@ bool SpringBlockSolver::findStaleThreads(std::span<const SolverBody> bodies) {
     bool any = false;
     for (std::size_t i = 0; i < elementCount_; ++i) {
         const SpringRow& row = elements_[i];
-        if (row.mayRelease) {  // Fox-Goodwin's, released where its solved end is slack
-            const SolverBody& a = bodies[row.bodyA];
-            const SolverBody& b = bodies[row.bodyB];
-            // Its end along the start line is no longer than the true one: taut there, taut.
-            const bool taut = row.length - row.restLength + h_ * springRowSpeed(a, b, row) >= 0;
-            if (usable(row) && !taut && threadRowEndStretch(a, b, row, h_, endSpan_[i]) < 0) {
-                stale_[i] = 2;
-                wanted_[i] = 1;  // the form pulls while the level before is taut
-                any = true;
-            }
-            continue;
-        }
         if (!(row.discreteGradient || row.levelGradient) || !wanted_[i])
             continue;
         // 1: a discrete-gradient row, whose turn rows follow it; 2: a three-level form's.
@@ -519,11 +507,6 @@ void SpringBlockSolver::relineariseStaleThreads(std::span<SolverBody> bodies, bo
         SpringRow& row = elements_[i];
         SolverBody& a = bodies[row.bodyA];
         SolverBody& b = bodies[row.bodyB];
-        if (row.mayRelease) {
-            if (!lastRound)
-                releaseThreadRow(a, b, row, h_, endSpan_[i]);
-            continue;
-        }
         // The row's impulse moves to its new line.
         applySpringImpulse(a, b, row, -row.impulse);
         // Unsettled for the last round: implicit Euler, which cannot gain (spring_row.h).

@@ -243,10 +243,10 @@ void lineariseLevelRow(const SolverBody& a, const SolverBody& b, SpringRow& row,
                resistance;
 }
 
-// A resolved undamped thread (experiment: the form on every step, s-band3): the form's row by the
-// true lengths, linearised at its end stretch alone (the root of x1 + (omega h)^2 G(x1) = its
-// stretch at constant velocity; linear where the three levels are taut).
-bool prepareResolvedThread(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h,
+// A resolved undamped thread (spring_row.h): the form's row by the true lengths, linearised at
+// its end stretch alone (the root of x1 + (omega h)^2 G(x1) = its stretch at constant velocity;
+// linear, Fox-Goodwin's, where the three levels are taut).
+void prepareResolvedThread(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h,
                            Real squared) {
     row.span = row.length * row.direction;
     const Real x0 = row.length - row.restLength;
@@ -268,7 +268,6 @@ bool prepareResolvedThread(const SolverBody& a, const SolverBody& b, SpringRow& 
     row.levelGradient = true;
     const Real toEnd = freeLength > kMinimumLength ? (row.restLength + x1) / freeLength : 1;
     lineariseLevelRow(a, b, row, h, free * toEnd);
-    return true;
 }
 
 }  // namespace
@@ -276,18 +275,6 @@ bool prepareResolvedThread(const SolverBody& a, const SolverBody& b, SpringRow& 
 bool threadRowPulls(const SpringRow& row) {
     return (row.discreteGradient && row.length >= row.restLength) ||
            (row.levelGradient && row.lastStretch > 0);
-}
-
-void releaseThreadRow(SolverBody& a, SolverBody& b, SpringRow& row, Real h, const Vec3& endSpan) {
-    // The known levels' impulse leaves the bodies with the row's: the form solves the whole pull.
-    applySpringImpulse(a, b, row, -(row.impulse + row.knownImpulse));
-    row.impulse += row.knownImpulse;
-    row.knownImpulse = 0;
-    row.mayRelease = false;
-    row.levelGradient = true;
-    row.lastStretch = (row.span - h * row.startVelocity).norm() - row.restLength;
-    lineariseLevelRow(a, b, row, h, endSpan);
-    applySpringImpulse(a, b, row, row.impulse);
 }
 
 bool threadRowStale(const SolverBody& a, const SolverBody& b, const SpringRow& row, Real h,
@@ -390,16 +377,17 @@ void prepareSpringRow(const SolverBody& a, const SolverBody& b, SpringRow& row, 
                              row.angularB.dot(row.angularImpulseB);
     const Real squared = h * h * row.stiffness * inverseMass;  // (omega h)^2
     // Only threads past Fox-Goodwin's range, and not the stiffest, take the discrete gradient;
-    // undamped ones within it its weights and the three-level form around a catch or release.
+    // undamped ones within it the three-level scheme's energy-conserving form.
     const bool undampedThread =
         row.discreteGradient && row.tensionOnly && row.damping == 0 && row.spectralRadius >= 1;
     row.discreteGradient = row.discreteGradient && squared >= kDiscreteGradientFrom &&
                            squared <= kDiscreteGradientUpTo;
     row.levelGradient = false;
-    row.mayRelease = false;
     if (undampedThread && squared < kDiscreteGradientFrom && row.length >= kMinimumLength &&
-        inverseMass > 0 && prepareResolvedThread(a, b, row, h, squared))
+        inverseMass > 0) {
+        prepareResolvedThread(a, b, row, h, squared);
         return;
+    }
     if (row.discreteGradient) {
         // The last step's half comes again; this step's is linearised at constant velocity.
         row.knownImpulse = row.direction.dot(row.carried);

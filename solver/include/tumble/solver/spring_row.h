@@ -86,9 +86,8 @@
 /// error (twice leapfrog's) made the net-10 sweep's error at 1/240 ((omega h)^2 = 1.39) 0.0209 m
 /// against the peers' 0.0195 (Fox-Goodwin's 0.0063), so they keep the weights above.
 ///
-/// Undamped threads within Fox-Goodwin's range ((omega h)^2 < 1.5, c = 0) keep its weights while
-/// taut at all three levels, and take the three-level scheme's energy-conserving form on a step
-/// that catches or releases them (`levelGradient`: a level slack). Over the levels x_-1, x0, x1
+/// Undamped threads within Fox-Goodwin's range ((omega h)^2 < 1.5, c = 0) take the three-level
+/// scheme's energy-conserving form on every step (`levelGradient`). Over the levels x_-1, x0, x1
 /// (stretches) the symmetric scheme keeps the form M (x1 - x0)^2 / (2 h^2) + (k/2) Phi(x0, x1),
 /// Phi(a, b) = beta (a+^2 + b+^2) + (1 - 2 beta) a+ b+ (a+ = max(a, 0)), exactly when the pull is
 ///     F = k G,   G = (Phi(x0, x1) - Phi(x_-1, x0)) / (x1 - x_-1)
@@ -103,10 +102,11 @@
 ///     r = h k s^2 G',  gamma = 1 / (h r),  bias = k s (G + G' (x_-1 + h s w0 - x1*)) / r.
 /// m's turn is left to the block's rounds (a fixed point contracting like (omega h)^2 C / L, small
 /// at a catch, where C ~ 0, and in this range; the discrete gradient's turn rows made the soft
-/// 40 x 40 net 11x dearer when every resolved thread took this form). A Fox-Goodwin thread whose
-/// solved end is slack (a release) becomes such a row in the rounds. Why: the trapezoidal catches
-/// and the cut new level of a release lost a tumbling net's energy (`net-energy` at omega_e h =
-/// 0.5: 0.30 of it left in 10 s).
+/// 40 x 40 net 11x dearer). Why on every step, not only on catches and releases with Fox-Goodwin's
+/// weights between: those record a taut step's end along its start line, short of the true
+/// length, and each hand-over between the two measures pumped energy (`net-energy` max 1.05-1.08
+/// at omega_e h 0.5-0.7; the form alone keeps its own energy within 0.11 %); the trapezoidal
+/// catches before them lost a tumbling net's energy (0.30 of it left in 10 s at 0.5).
 ///
 /// Deterministic: rows are solved in array order.
 
@@ -143,12 +143,9 @@ struct SpringRow {
     /// A thread on the energy-conserving scheme (see below): the row solves the new half of the
     /// discrete gradient, linearised at the stretch `linearisedAt`.
     bool discreteGradient = false;
-    /// A resolved undamped thread slack at one of the step's levels: the row solves its whole
-    /// pull, the three-level scheme's energy-conserving form linearised at `linearisedAt`.
+    /// A resolved undamped thread: the row solves its whole pull, the three-level scheme's
+    /// energy-conserving form linearised at `linearisedAt`.
     bool levelGradient = false;
-    /// A resolved undamped thread on Fox-Goodwin's weights, taut at both known levels: it takes
-    /// the form above if the step releases it.
-    bool mayRelease = false;
     /// A `levelGradient` row's stretch at the level before the step, |d0 - h v0| - L0 (m).
     Real lastStretch = 0;
     /// Its half impulse of the last step on B's anchor (N s; -carried on A's), applied again in
@@ -204,10 +201,6 @@ Real threadRowEndStretch(const SolverBody& a, const SolverBody& b, const SpringR
 /// A discrete-gradient thread row whose linearisation did not settle, made an implicit Euler row
 /// on its start-of-step line for the rest of the step (its carried half stays applied).
 void implicitEulerThreadRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h);
-
-/// A Fox-Goodwin thread row whose step releases it (`mayRelease`), made a `levelGradient` row
-/// linearised at `endSpan`, its known levels' impulse taken off the bodies and into its own.
-void releaseThreadRow(SolverBody& a, SolverBody& b, SpringRow& row, Real h, const Vec3& endSpan);
 
 /// Whether a thread row pulls whatever its end stretch: a discrete-gradient thread taut at the
 /// start, or a `levelGradient` one taut at the level before it.
