@@ -336,7 +336,8 @@ void SpringBlockSolver::start(std::span<const SolverBody> bodies) {
     // the guess. Transverse rows follow their element.
     for (std::size_t i = 0; i < elementCount_; ++i) {
         const SpringRow& row = elements_[i];
-        active_[i] = usable(row) && (!row.tensionOnly || row.length >= row.restLength);
+        active_[i] = usable(row) &&
+                     (!row.tensionOnly || row.length >= row.restLength || threadRowPulls(row));
     }
     for (std::size_t i = elementCount_; i < n; ++i)
         active_[i] = active_[owner_[i - elementCount_]];
@@ -481,16 +482,20 @@ bool SpringBlockSolver::findStaleThreads(std::span<const SolverBody> bodies) {
     bool any = false;
     for (std::size_t i = 0; i < elementCount_; ++i) {
         const SpringRow& row = elements_[i];
-        if (!row.discreteGradient || !wanted_[i])
+        if (!(row.discreteGradient || row.levelGradient) || !wanted_[i])
             continue;
+        // 1: a discrete-gradient row, whose turn rows follow it; 2: a three-level form's.
+        const char mark = row.discreteGradient ? 1 : 2;
         if (!active_[i]) {  // caught in this round: linearised where it ends
             threadRowEndStretch(bodies[row.bodyA], bodies[row.bodyB], row, h_, endSpan_[i]);
-            stale_[i] = 1;
+            stale_[i] = mark;
             any = true;
             continue;
         }
-        stale_[i] = threadRowStale(bodies[row.bodyA], bodies[row.bodyB], row, h_, endSpan_[i]);
-        any = any || stale_[i];
+        const bool stale =
+            threadRowStale(bodies[row.bodyA], bodies[row.bodyB], row, h_, endSpan_[i]);
+        stale_[i] = stale ? mark : 0;
+        any = any || stale;
     }
     return any;
 }
@@ -514,7 +519,7 @@ void SpringBlockSolver::relineariseStaleThreads(std::span<SolverBody> bodies, bo
     // Their turn rows follow the new line, from no impulse.
     for (std::size_t j = 0; j < transverse_.size(); ++j) {
         const std::uint32_t owner = owner_[j];
-        if (!stale_[owner])
+        if (stale_[owner] != 1)
             continue;
         const SpringRow& thread = elements_[owner];
         SpringRow& turn = transverse_[j];
@@ -557,10 +562,11 @@ Real SpringBlockSolver::settle(std::span<SolverBody> bodies) {
             const SolverBody& b = bodies[r.bodyB];
             // Pushes and pulls below kFlipSpeed are rounding (a net falling flat has threads at
             // exactly their rest length): flipping on them cost a refactorisation per round.
-            // A discrete-gradient thread taut at the start pulls whatever its end stretch
-            // (spring_row.h): a push is its linear model's, mended by linearising again.
-            const bool pulls = r.discreteGradient && r.length >= r.restLength;
-            if (r.discreteGradient && !pulls) {
+            // A discrete-gradient thread taut at the start pulls whatever its end stretch, and
+            // a three-level form's taut at the level before it (spring_row.h): a push is its
+            // linear model's, mended by linearising again.
+            const bool pulls = threadRowPulls(r);
+            if ((r.discreteGradient || r.levelGradient) && !pulls) {
                 // One slack at the start pulls exactly when it ends stretched (its gradient is
                 // positive there), whatever its linear model says: a catch's tangent crosses
                 // zero above the rest length, and threads caught short of that were left out,

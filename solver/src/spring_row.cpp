@@ -13,6 +13,8 @@ constexpr Real kMinimumLength = 1e-12;
 // (Fox-Goodwin, beta = 1/12): stable to (omega h)^2 = 6, and a node's highest mode is about
 // twice its element's (omega h)^2.
 constexpr Real kFourthOrderUpTo = 1.5;
+// Fox-Goodwin's beta: the symmetric weights there.
+constexpr Real kFoxGoodwin = Real(1) / 12;
 // (omega h)^2 from which the unresolved element is damped: rho = this / (omega h)^2.
 constexpr Real kDampedFrom = 4;
 // (omega h)^2 from which an undamped thread takes the discrete gradient, up to the second
@@ -31,7 +33,7 @@ struct SchemeWeights {
 SchemeWeights schemeWeights(Real spectralRadius, Real squared) {
     if (spectralRadius >= 1 && squared < kDampedFrom) {
         // Symmetric: no numerical damping. beta rises to keep the highest mode stable.
-        const Real beta = squared <= kFourthOrderUpTo ? Real(1) / 12 : Real(0.25) - 0.25 / squared;
+        const Real beta = squared <= kFourthOrderUpTo ? kFoxGoodwin : Real(0.25) - 0.25 / squared;
         return {beta, beta, 0.5};
     }
     const Real rho =
@@ -64,7 +66,7 @@ constexpr Real kDirectionTolerance = 3e-4;
 // A turn row's stiffness where its thread does not pull, per unit of the thread's (N/m): it
 // then holds almost nothing, and its row stays in the factorisation's pattern.
 constexpr Real kInertTurn = 1e-6;
-// Newton (or bisection) steps of a thread's first guess alone (threadStretchAlone).
+// Newton (or bisection) steps of a thread's first guess alone (stretchAlone).
 constexpr int kLocalIterations = 12;
 
 // The discrete gradient (V(c1) - V(c0)) / (c1 - c0) of a thread's energy V = k max(C, 0)^2 / 2
@@ -87,6 +89,52 @@ Gradient threadGradient(Real k, Real c0, Real c1) {
     return {0.5 * k * c1 * q, 0.5 * k * q * (2 - q)};
 }
 
+// The three-level form's pull per unit k, G = (Phi(x0, x1) - Phi(xm, x0)) / (x1 - xm) (m), and its
+// slope in x1, by the levels' signs (spring_row.h): Phi(x0, x1) - Phi(xm, x0) = (x1+ - xm+)
+// (beta (x1+ + xm+) + (1 - 2 beta) x0+). The slope's divided difference is written out: at
+// x1 ~ xm it cancels to rounding.
+Gradient levelGradient(Real xm, Real x0, Real x1) {
+    constexpr Real beta = kFoxGoodwin;
+    const Real p0 = std::max<Real>(x0, 0);
+    if (xm >= 0 && x1 >= 0)  // taut at both ends: Fox-Goodwin's weights
+        return {beta * (x1 + xm) + (1 - 2 * beta) * p0, beta};
+    if (x1 <= 0 && xm <= 0)
+        return {0, 0};
+    if (xm >= 0) {  // released: G = xm (beta xm + (1 - 2 beta) x0+) / (xm - x1)
+        const Real value = xm * (beta * xm + (1 - 2 * beta) * p0) / (xm - x1);
+        return {value, value / (xm - x1)};
+    }
+    const Real run = x1 - xm;  // caught: > x1 > 0
+    const Real tangent = 2 * beta * x1 + (1 - 2 * beta) * p0;
+    return {x1 * (beta * x1 + (1 - 2 * beta) * p0) / run,
+            (beta * x1 * x1 - xm * tangent) / (run * run)};
+}
+
+// The root x1 of x1 + weight G(x1) = free for a gradient G nondecreasing in x1 (>= 0), from
+// lo, where the left side is <= free: a thread's end stretch alone between its bodies, its
+// first guess (the block's rounds only correct it). Newton, kept inside the bracket by
+// bisection: on a stiff catch Newton from the constant-velocity guess halves its distance per
+// step. It stops early where the residual is within `tolerance` (m).
+template <class GradientAt>
+Real stretchAlone(const GradientAt& gradientAt, Real lo, Real free, Real weight,
+                  Real tolerance = -1) {
+    Real hi = free;
+    Real c1 = free;
+    for (int i = 0; i < kLocalIterations; ++i) {
+        const Gradient g = gradientAt(c1);
+        const Real residual = c1 + weight * g.value - free;
+        if (std::abs(residual) <= tolerance)
+            break;
+        if (residual > 0)
+            hi = c1;
+        else
+            lo = c1;
+        const Real newton = c1 - residual / (1 + weight * g.slope);
+        c1 = newton > lo && newton < hi ? newton : 0.5 * (lo + hi);
+    }
+    return c1;
+}
+
 // The row's Jacobians along its direction, and J M^-1 J'.
 Real setJacobians(const SolverBody& a, const SolverBody& b, SpringRow& row) {
     row.angularA = row.rA.cross(row.direction);
@@ -104,23 +152,10 @@ Vec3 anchorSpeed(const SolverBody& a, const SolverBody& b, const SpringRow& row)
 }
 
 // The end-of-step stretch c1 of a thread alone between its bodies: the root of c1 + (h^2 / 2)
-// J M^-1 J' D(c0, c1) = free, free its end stretch without this step's half (increasing in c1:
-// D' >= 0). A first guess for the block's rounds, which only correct it: from the constant-velocity
-// guess, Newton on a stiff catch halves its distance to the root per round.
+// J M^-1 J' D(c0, c1) = free, free its end stretch without this step's half (D' >= 0).
 Real threadStretchAlone(Real k, Real c0, Real free, Real weight) {
-    Real lo = std::min<Real>(free, 0) - std::abs(c0), hi = free;  // g(lo) <= 0 <= g(hi)
-    Real c1 = free;
-    for (int i = 0; i < kLocalIterations; ++i) {
-        const Gradient g = threadGradient(k, c0, c1);
-        const Real residual = c1 + weight * g.value - free;
-        if (residual > 0)
-            hi = c1;
-        else
-            lo = c1;
-        const Real newton = c1 - residual / (1 + weight * g.slope);
-        c1 = newton > lo && newton < hi ? newton : 0.5 * (lo + hi);
-    }
-    return c1;
+    const auto gradientAt = [&](Real c1) { return threadGradient(k, c0, c1); };
+    return stretchAlone(gradientAt, std::min<Real>(free, 0) - std::abs(c0), free, weight);
 }
 
 // A discrete-gradient row's half impulse from the last step, along last step's line.
@@ -135,6 +170,7 @@ void applyCarriedImpulse(SolverBody& a, SolverBody& b, const SpringRow& row) {
 
 void implicitEulerThreadRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h) {
     row.discreteGradient = false;
+    row.levelGradient = false;
     row.direction = row.span / row.length;
     const Real inverseMass = setJacobians(a, b, row);
     const Real resistance = row.damping + h * row.stiffness;  // spring_row.h, rho = 0
@@ -153,24 +189,118 @@ Real threadRowEndStretch(const SolverBody& a, const SolverBody& b, const SpringR
     return endSpan.norm() - row.restLength;
 }
 
+namespace {
+
+// A direction with the components it owes to rounding alone set to zero. x_-1 = x0 - h v0 picks up
+// the velocities' rounding (~1e-17 m/s) that the positions never resolved, so Gonzalez's m of a
+// flat net's thread leaks ~1e-15 across it; two crossing threads then couple in the block where
+// their start lines (exactly perpendicular) did not, and the factorisation fills in (net-40-soft
+// 1.45x main's cost, 1.15x with the start lines).
+Vec3 snapRounding(const Vec3& direction) {
+    constexpr Real kRounding = 1e-12;
+    Vec3 snapped = direction;
+    for (int i = 0; i < 3; ++i)
+        snapped[i] = std::abs(snapped[i]) < kRounding ? Real(0) : snapped[i];
+    return snapped;
+}
+
+// The three-level form's row (spring_row.h) linearised at the end span d1*, along Gonzalez's
+// m = (d_-1 + d1*) / (L_-1 + L1*) = s n: r = h k s^2 G', bias = k s (G + G' (x_-1 + h s w0 -
+// x1*)) / r.
+void lineariseLevelRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h,
+                       const Vec3& endSpan) {
+    const Real xm = row.lastStretch;
+    const Real x0 = row.length - row.restLength;
+    Vec3 end = endSpan;
+    Real x1 = end.norm() - row.restLength;
+    const Real floor = kCatchFloor * row.restLength;
+    if (x1 < floor && !(levelGradient(xm, x0, x1).slope > 0)) {
+        // Just past the rest length, along the span's line: the slope is 0 below it.
+        const Real endLength = end.norm();
+        end = (endLength > kMinimumLength ? Vec3(end / endLength) : row.direction) *
+              (row.restLength + floor);
+        x1 = floor;
+    }
+    const Gradient g = levelGradient(xm, x0, x1);
+    const Vec3 mid = row.span - h * row.startVelocity + end;
+    const Real midLength = mid.norm();
+    if (midLength > kMinimumLength)
+        row.direction = snapRounding(mid / midLength);
+    const Real scale =
+        midLength > kMinimumLength ? midLength / (2 * row.restLength + xm + x1) : Real(1);
+    row.linearisedAt = x1;
+    row.knownImpulse = 0;
+    const Real inverseMass = setJacobians(a, b, row);
+    const Real resistance = h * row.stiffness * scale * scale * g.slope;
+    if (!(resistance > 0) || !(inverseMass > 0)) {
+        row.mass = 0;
+        return;
+    }
+    const Real startRate = row.direction.dot(row.startVelocity);
+    row.softness = 1 / (h * resistance);
+    row.mass = 1 / (inverseMass + row.softness);
+    row.bias = row.stiffness * scale * (g.value + g.slope * (xm + h * scale * startRate - x1)) /
+               resistance;
+}
+
+// A resolved undamped thread (spring_row.h): the form's row by the true lengths, linearised at
+// its end stretch alone (the root of x1 + (omega h)^2 G(x1) = its stretch at constant velocity;
+// linear, Fox-Goodwin's, where the three levels are taut).
+void prepareResolvedThread(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h,
+                           Real squared) {
+    row.span = row.length * row.direction;
+    const Real x0 = row.length - row.restLength;
+    row.lastStretch = (row.span - h * row.startVelocity).norm() - row.restLength;
+    const Real xm = row.lastStretch;
+    const Vec3 free = row.span + h * row.startVelocity;
+    const Real freeLength = free.norm();
+    const Real freeStretch = freeLength - row.restLength;
+    // Taut at all three (most threads of a net): the root is Fox-Goodwin's, linear.
+    const Real taut = (freeStretch - squared * (kFoxGoodwin * xm + (1 - 2 * kFoxGoodwin) * x0)) /
+                      (1 + squared * kFoxGoodwin);
+    Real x1 = taut;
+    if (!(xm > 0 && x0 > 0 && taut > 0)) {
+        const auto gradientAt = [&](Real c1) { return levelGradient(xm, x0, c1); };
+        const Real lo = freeStretch - squared * levelGradient(xm, x0, freeStretch).value;
+        x1 = stretchAlone(gradientAt, lo, freeStretch, squared,
+                          kGradientTolerance * kCatchFloor * row.restLength);
+    }
+    row.levelGradient = true;
+    const Real toEnd = freeLength > kMinimumLength ? (row.restLength + x1) / freeLength : 1;
+    lineariseLevelRow(a, b, row, h, free * toEnd);
+}
+
+}  // namespace
+
+bool threadRowPulls(const SpringRow& row) {
+    return (row.discreteGradient && row.length >= row.restLength) ||
+           (row.levelGradient && row.lastStretch > 0);
+}
+
 bool threadRowStale(const SolverBody& a, const SolverBody& b, const SpringRow& row, Real h,
                     Vec3& endSpan) {
     threadRowEndStretch(a, b, row, h, endSpan);
-    const Vec3 mid = row.span + endSpan;
+    // The direction over the scheme's two levels: d0 and d1, or a three-level form's d_-1 and d1.
+    const Vec3 mid =
+        (row.levelGradient ? Vec3(row.span - h * row.startVelocity) : row.span) + endSpan;
     const Real midLength = mid.norm();
     if (!(midLength > kMinimumLength))
         return false;
     if ((mid / midLength - row.direction).norm() > kDirectionTolerance)
         return true;
-    const Real k = row.stiffness;
     const Real c0 = row.length - row.restLength;
     const Real c1 = endSpan.norm() - row.restLength;
     const Real floor = kCatchFloor * row.restLength;
-    if (c0 < 0 && c1 <= floor && row.linearisedAt <= floor)
+    const Real before = row.levelGradient ? row.lastStretch : c0;  // slack: a catch
+    if (before < 0 && c1 <= floor && row.linearisedAt <= floor)
         return false;  // linearised at the floor already (lineariseThreadRow)
-    const Gradient at = threadGradient(k, c0, row.linearisedAt);
+    const auto gradientAt = [&](Real c) {
+        return row.levelGradient ? levelGradient(row.lastStretch, c0, c)
+                                 : threadGradient(row.stiffness, c0, c);
+    };
+    const Gradient at = gradientAt(row.linearisedAt);
     const Real model = at.value + at.slope * (c1 - row.linearisedAt);
-    const Real exact = threadGradient(k, c0, c1).value;
+    const Real exact = gradientAt(c1).value;
     return std::abs(model - exact) >
            kGradientTolerance * std::max(std::abs(exact), std::abs(model));
 }
@@ -180,6 +310,10 @@ bool threadRowStale(const SolverBody& a, const SolverBody& b, const SpringRow& r
 // -2 lambda / (h s) = D(c0, c1*) + D' (c0 + h s w - c1*) + c s w (spring_row.h).
 void lineariseThreadRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h,
                         const Vec3& endSpan) {
+    if (row.levelGradient) {
+        lineariseLevelRow(a, b, row, h, endSpan);
+        return;
+    }
     const Real k = row.stiffness;
     const Real c0 = row.length - row.restLength;
     Vec3 end = endSpan;
@@ -242,9 +376,18 @@ void prepareSpringRow(const SolverBody& a, const SolverBody& b, SpringRow& row, 
     const Real inverseMass = a.inverseMass + b.inverseMass + row.angularA.dot(row.angularImpulseA) +
                              row.angularB.dot(row.angularImpulseB);
     const Real squared = h * h * row.stiffness * inverseMass;  // (omega h)^2
-    // Only threads past Fox-Goodwin's range, and not the stiffest, take the discrete gradient.
+    // Only threads past Fox-Goodwin's range, and not the stiffest, take the discrete gradient;
+    // undamped ones within it the three-level scheme's energy-conserving form.
+    const bool undampedThread =
+        row.discreteGradient && row.tensionOnly && row.damping == 0 && row.spectralRadius >= 1;
     row.discreteGradient = row.discreteGradient && squared >= kDiscreteGradientFrom &&
                            squared <= kDiscreteGradientUpTo;
+    row.levelGradient = false;
+    if (undampedThread && squared < kDiscreteGradientFrom && row.length >= kMinimumLength &&
+        inverseMass > 0) {
+        prepareResolvedThread(a, b, row, h, squared);
+        return;
+    }
     if (row.discreteGradient) {
         // The last step's half comes again; this step's is linearised at constant velocity.
         row.knownImpulse = row.direction.dot(row.carried);

@@ -96,8 +96,10 @@ TEST(Net, DroppedFlatFallsLikeOneBody) {
 // hanging in the gaps vibrating at 0.1-0.2 m/s for good. Both fixed: asleep by 5 s.
 // The lowest and highest internal energy / its start of a 6 x 6 undamped net thrown open so
 // that it folds and tumbles (corners at 2 m/s, two lifted and two lowered at 1 m/s) over 3 s at
-// h = 1/60, taken at the discrete-gradient threads' level velocity (net-energy, validation).
-std::pair<Real, Real> thrownNetEnergyBand(Real omegaEH) {
+// h = 1/60, taken at the discrete-gradient threads' level velocity (net-energy, validation), or
+// for resolved threads (`stepMean`) at the three-level schemes' own, the mean of the steps either
+// side (spring_row.h).
+std::pair<Real, Real> thrownNetEnergyBand(Real omegaEH, bool stepMean = false) {
     constexpr Real kH = 1.0 / 60, kMass = 0.01, kMesh = 0.05;
     WorldDef worldDef = testkit::weightlessWorld(kH);
     worldDef.enableSleep = false;
@@ -133,28 +135,42 @@ std::pair<Real, Real> thrownNetEnergyBand(Real omegaEH) {
         }
         return v;
     };
-    const auto energy = [&] {
-        const std::vector<Vec3> parts = levelParts();
-        std::vector<Vec3> u(n);
+    const auto internal = [&](const std::vector<Vec3>& u, Real elastic) {
         Vec3 mean = Vec3::Zero();
-        for (std::size_t j = 0; j < n; ++j) {
-            u[j] = parts[j] + parts[n + j];
-            mean += u[j] / static_cast<Real>(n);
-        }
+        for (const Vec3& x : u)
+            mean += x / static_cast<Real>(n);
         Real kinetic = 0;
         for (const Vec3& x : u)
             kinetic += 0.5 * kMass * (x - mean).squaredNorm();
-        return kinetic + world.springPotentialEnergy();
+        return kinetic + elastic;
     };
-    // Level 0: the thrown velocities, no half carried yet.
-    const Real e0 = energy();
+    const auto level = [&] {
+        const std::vector<Vec3> parts = levelParts();
+        std::vector<Vec3> u(n);
+        for (std::size_t j = 0; j < n; ++j)
+            u[j] = stepMean ? parts[j] : Vec3(parts[j] + parts[n + j]);
+        return u;
+    };
+    // Level 0: the thrown velocities, no half carried yet, no step before it.
+    std::vector<Vec3> before = level();
+    Real elastic = world.springPotentialEnergy();
+    const Real e0 = internal(before, elastic);
     Real low = 1, high = 1;
     for (int i = 0; i < 180; ++i) {
         if (!world.step().ok())
             return {0, std::numeric_limits<Real>::infinity()};
-        const Real ratio = energy() / e0;
+        const std::vector<Vec3> after = level();
+        std::vector<Vec3> u = after;
+        if (stepMean) {  // level n of the step just taken: its positions, the steps' mean
+            for (std::size_t j = 0; j < n; ++j)
+                u[j] = 0.5 * (before[j] + after[j]);
+        }
+        const Real ratio = stepMean ? (i == 0 ? 1 : internal(u, elastic) / e0)
+                                    : internal(u, world.springPotentialEnergy()) / e0;
         low = std::min(low, ratio);
         high = std::max(high, ratio);
+        before = after;
+        elastic = world.springPotentialEnergy();
     }
     return {low, high};
 }
@@ -177,6 +193,16 @@ TEST(Net, UnresolvedUndampedThreadsKeepTheirEnergy) {
 // 0.9999 ... 1.0001; on Fox-Goodwin with trapezoidal catches 0.156 ... 1.19.
 TEST(Net, CoarselyResolvedUndampedThreadsKeepTheirEnergy) {
     const auto [low, high] = thrownNetEnergyBand(1);  // a thread's (omega h)^2 = 2
+    EXPECT_GE(low, 0.99);
+    EXPECT_LE(high, 1.01);
+}
+
+// Within Fox-Goodwin's range an undamped thread keeps its weights while taut and takes the
+// three-level scheme's energy-conserving form on the steps that catch or release it
+// (spring_row.h): the net's energy at the scheme's level stays within 1 % of its start. The
+// trapezoidal catches lost it. Measured (3 s) 0.9982 ... 1.0054; with trapezoidal catches 0.9865.
+TEST(Net, ResolvedUndampedThreadsKeepTheirEnergy) {
+    const auto [low, high] = thrownNetEnergyBand(0.2, true);  // a thread's (omega h)^2 = 0.08
     EXPECT_GE(low, 0.99);
     EXPECT_LE(high, 1.01);
 }

@@ -86,6 +86,28 @@
 /// error (twice leapfrog's) made the net-10 sweep's error at 1/240 ((omega h)^2 = 1.39) 0.0209 m
 /// against the peers' 0.0195 (Fox-Goodwin's 0.0063), so they keep the weights above.
 ///
+/// Undamped threads within Fox-Goodwin's range ((omega h)^2 < 1.5, c = 0) take the three-level
+/// scheme's energy-conserving form on every step (`levelGradient`). Over the levels x_-1, x0, x1
+/// (stretches) the symmetric scheme keeps the form M (x1 - x0)^2 / (2 h^2) + (k/2) Phi(x0, x1),
+/// Phi(a, b) = beta (a+^2 + b+^2) + (1 - 2 beta) a+ b+ (a+ = max(a, 0)), exactly when the pull is
+///     F = k G,   G = (Phi(x0, x1) - Phi(x_-1, x0)) / (x1 - x_-1)
+/// (the work of F over x_-1 -> x1 is the form's change), which is Fox-Goodwin's beta x1 + (1 - 2
+/// beta) x0 + beta x_-1 where the three are taut, 0 where they are slack and >= 0 always (Phi is
+/// convex in each level: G, a divided difference, is nondecreasing in x1). In 3D it pulls along
+/// Gonzalez's direction over the two levels, m = (d_-1 + d1) / (L_-1 + L1) = s n, for which
+/// m . (d1 - d_-1) = L1 - L_-1 = h s (w0 + w) (w = J v1, w0 = J v0 along n): so the step's work
+/// is exactly k (Phi(x0, x1) - Phi(x_-1, x0)). The row solves the step's whole pull, Newton's
+/// linearisation at a guessed end stretch x1* (no known part, no carried half):
+///     lambda = -h k s (G(x1*) + G' (x_-1 + h s (w0 + w) - x1*)),
+///     r = h k s^2 G',  gamma = 1 / (h r),  bias = k s (G + G' (x_-1 + h s w0 - x1*)) / r.
+/// m's turn is left to the block's rounds (a fixed point contracting like (omega h)^2 C / L, small
+/// at a catch, where C ~ 0, and in this range; the discrete gradient's turn rows made the soft
+/// 40 x 40 net 11x dearer). Why on every step, not only on catches and releases with Fox-Goodwin's
+/// weights between: those record a taut step's end along its start line, short of the true
+/// length, and each hand-over between the two measures pumped energy (`net-energy` max 1.05-1.08
+/// at omega_e h 0.5-0.7; the form alone keeps its own energy within 0.11 %); the trapezoidal
+/// catches before them lost a tumbling net's energy (0.30 of it left in 10 s at 0.5).
+///
 /// Deterministic: rows are solved in array order.
 
 #include <cstdint>
@@ -121,6 +143,11 @@ struct SpringRow {
     /// A thread on the energy-conserving scheme (see below): the row solves the new half of the
     /// discrete gradient, linearised at the stretch `linearisedAt`.
     bool discreteGradient = false;
+    /// A resolved undamped thread: the row solves its whole pull, the three-level scheme's
+    /// energy-conserving form linearised at `linearisedAt`.
+    bool levelGradient = false;
+    /// A `levelGradient` row's stretch at the level before the step, |d0 - h v0| - L0 (m).
+    Real lastStretch = 0;
     /// Its half impulse of the last step on B's anchor (N s; -carried on A's), applied again in
     /// this one (prepareSpringRows).
     Vec3 carried = Vec3::Zero();
@@ -174,6 +201,10 @@ Real threadRowEndStretch(const SolverBody& a, const SolverBody& b, const SpringR
 /// A discrete-gradient thread row whose linearisation did not settle, made an implicit Euler row
 /// on its start-of-step line for the rest of the step (its carried half stays applied).
 void implicitEulerThreadRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h);
+
+/// Whether a thread row pulls whatever its end stretch: a discrete-gradient thread taut at the
+/// start, or a `levelGradient` one taut at the level before it.
+bool threadRowPulls(const SpringRow& row);
 
 /// A discrete-gradient thread row linearised at the end-of-step span `endSpan`: its direction,
 /// Jacobians, softness, bias and effective mass (its impulse untouched).
