@@ -56,8 +56,8 @@ TEST(MeshSheet, ALongShapeTouchingAThinWallFromEitherSideIsPushedBackOutOnIt) {
     // Tolerance, written before measuring: 1 mm deep on its own side, the normal the wall's
     // (1e-9); from the triangles' back 1 um deeper, the prism's thickness (collide_mesh.cpp). Half
     // the bounding radius of each shape is more than its depth behind the plane plus its half-width
-    // there, where the side was decided by the origin against it: pushed out of the far side, 2 cm
-    // (capsule) and 0.9 cm (plank) deep.
+    // there, where the side was decided by the origin against it: pushed out of the far side, 1.9
+    // cm (capsule) and 0.9 cm (plank) deep.
     const Shape wall = thinWall();
     const Quat alongY(Eigen::AngleAxis<Real>(std::numbers::pi / 2, Vec3::UnitX()));
     const struct {
