@@ -36,9 +36,6 @@ namespace {
 /// Depth of the prism behind each triangle (m): enough for well-defined side faces and edge
 /// directions, too thin to be felt.
 constexpr Real kPrismThickness = 1e-6;
-/// A shape counts as behind a triangle when its origin lies behind the plane by more than this
-/// fraction of its bounding radius.
-constexpr Real kBackReach = 0.5;
 /// Triangles whose normals lie within acos(kMergeCos) (5 degrees) of a group's share its
 /// manifold: a curved surface's neighbours (internal edges are flat within 3 degrees), but not
 /// the two faces of a crease (a V of 170 degrees folds by 10).
@@ -253,14 +250,13 @@ void collideConvexMesh(const Shape& a, const Transform& poseA, const Shape& b,
     const Transform pose{poseB.applyInverse(poseA.position),
                          (poseB.rotation.conjugate() * poseA.rotation).normalized()};
     const Aabb box = boundsOf(a, pose).fattened(margin);
-    const Real backReach = kBackReach * boundingRadius(a);
     Scratch& s = scratch();
     s.kept.clear();
     forEachTriangle(b, box, [&](const MeshTriangle& t) { s.kept.triangles.push_back(t); });
     for (const MeshTriangle& t : s.kept.triangles) {
         TriangleManifold tm{{}, t.index};
         collideConvex(a, pose, s.prism.shape(t), Transform{}, margin, tm.manifold);
-        fileTriangleContact(a, pose, b, t, margin, backReach, tm, s.kept);
+        fileTriangleContact(a, pose, b, t, margin, tm, s.kept);
     }
     finishEdgeContacts(roundingRadius(a), s.kept);
     std::array<Vec3, ManifoldSet::kMaxManifolds> normals;

@@ -123,14 +123,33 @@ bool overTriangle(const MeshTriangle& t, const Vec3& p) {
     return true;
 }
 
-/// The face normal pointing from the shape into the triangle. The shape is in front unless its
-/// origin lies behind the plane by more than `backReach`: a shape pressed into a surface past its
-/// centre (a fast capsule into terrain) is still pushed out of the front, while one touching a
-/// thin wall from behind is pushed back out behind. A sideways contact normal's tilt says
-/// nothing of the side.
-Vec3 intoTriangle(const Transform& pose, const MeshTriangle& t, Real backReach) {
-    const bool front = t.normal.dot(pose.position - t.vertices[0]) >= -backReach;
-    return front ? Vec3(-t.normal) : t.normal;
+/// A shape counts as behind a triangle when it lies behind the plane by more than this fraction
+/// of its reach (intoTriangle).
+constexpr Real kBackReach = 0.5;
+
+/// The face normal pointing from the shape into the triangle. The shape is in front unless it
+/// lies behind the plane by more than kBackReach of its reach: a shape pressed into a surface
+/// past its centre (a fast capsule into terrain) is still pushed out of the front, while one
+/// touching a thin wall from behind is pushed back out behind. A sideways contact normal's tilt
+/// says nothing of the side. A mesh may be a sheet with two open sides, so its reach is
+/// measured along the face normal: the shape's middle there, against half its width. By its
+/// origin and bounding radius a long shape lying along a thin wall behind it counted as in
+/// front (a thread's capsule touching the wall, 1 cm behind it and 4 cm long), and its contact
+/// pushed it through the wall by its whole thickness. A height field has solid below it: the
+/// origin and bounding radius, the farther reach.
+Vec3 intoTriangle(const Shape& shape, const Transform& pose, const Shape& surface,
+                  const MeshTriangle& t) {
+    Real behind, reach;
+    if (std::holds_alternative<HeightField>(surface)) {
+        behind = t.normal.dot(t.vertices[0] - pose.position);
+        reach = boundingRadius(shape);
+    } else {
+        const Vec3 d = pose.rotation.conjugate() * t.normal;
+        const Vec3 high = support(shape, d), low = support(shape, -d);
+        behind = t.normal.dot(t.vertices[0] - pose.apply((high + low) / 2));
+        reach = d.dot(high - low) / 2;
+    }
+    return behind <= kBackReach * reach ? Vec3(-t.normal) : t.normal;
 }
 
 /// Adds the shape's exact deepest point `c` to `m`. The half-space routine reduces to 4 points over
@@ -209,23 +228,32 @@ void offerGap(const MeshTriangle& t, const ContactPoint& c, const Vec3& normal, 
                     t.index});
 }
 
-/// The distance (m) from p to the triangle.
-Real distanceTo(const MeshTriangle& t, const Vec3& p) {
-    bool pastActive;
-    return std::hypot(t.normal.dot(p - t.vertices[0]), outsideDistance(t, p, pastActive));
-}
-
 /// Sets the gap points' depths: a point of the shape in an edge's wedge is nearest to an edge or
 /// vertex, so its depth is its distance to the nearest of `triangles` (a rounded shape's: its
-/// core point's, less or plus the rounding), not its depth below its own triangle's plane.
+/// core point's, less or plus the rounding), not its depth below its own triangle's plane. A
+/// point nearest to an active edge or vertex (past it) lies in no wedge but past the surface's
+/// border or a sharp fold, where that feature's own contact holds the shape: it is dropped. On a
+/// thin wall of triangles a thread's end cap 4 cm behind the plane, past an internal diagonal
+/// and over the wall's top edge, was taken 5 cm deep along the face normal, and one step of an
+/// 8 x 8 net landing on the edge gained 0.6 J.
 void measureGaps(std::vector<GapPoint>& gaps, const std::vector<MeshTriangle>& triangles,
                  Real rounding) {
-    for (GapPoint& g : gaps) {
+    std::erase_if(gaps, [&](GapPoint& g) {
         Real nearest = INFINITY;
-        for (const MeshTriangle& t : triangles)
-            nearest = std::min(nearest, distanceTo(t, g.core));
+        bool pastBorder = false;
+        for (const MeshTriangle& t : triangles) {
+            bool pastActive;
+            const Real outside = outsideDistance(t, g.core, pastActive);
+            const Real distance = std::hypot(t.normal.dot(g.core - t.vertices[0]), outside);
+            if (distance < nearest - kDepthNoise)
+                pastBorder = false;
+            if (distance <= nearest + kDepthNoise)
+                pastBorder = pastBorder || pastActive;
+            nearest = std::min(nearest, distance);
+        }
         g.point.separation = g.inside ? -(nearest + rounding) : nearest - rounding;
-    }
+        return pastBorder;
+    });
 }
 
 /// Redoes a contact along the face normal `normal` (from the shape into the triangle; see the
@@ -325,9 +353,9 @@ void addGaps(const std::vector<GapPoint>& gaps, const std::vector<MeshTriangle>&
 }  // namespace
 
 void fileTriangleContact(const Shape& shape, const Transform& pose, const Shape& surface,
-                         const MeshTriangle& t, Real margin, Real backReach, TriangleManifold tm,
+                         const MeshTriangle& t, Real margin, TriangleManifold tm,
                          EdgeContacts& out) {
-    const Vec3 normal = intoTriangle(pose, t, backReach);
+    const Vec3 normal = intoTriangle(shape, pose, surface, t);
     if (tm.manifold.pointCount > 0) {
         const std::uint8_t edges = featureEdges(t, -tm.manifold.normal);
         // An active edge or vertex keeps its own normal if it lies in the feature's normal cone;

@@ -53,10 +53,10 @@ struct EdgeContacts {
 /// Files triangle t of `surface` (one of out.triangles, filled first) and its contact `tm` (the
 /// pair routine's, shape against the triangle's prism; the shape at `pose` in the surface's frame)
 /// under the internal-edge rules: kept with its own normal on an active edge or vertex when the
-/// normal lies in that feature's normal cone, else redone along the face normal. `backReach` (m) is
-/// how far the shape's origin may lie behind the plane and still be pushed out of the front.
+/// normal lies in that feature's normal cone, else redone along the face normal, from the side
+/// the shape lies on.
 void fileTriangleContact(const Shape& shape, const Transform& pose, const Shape& surface,
-                         const MeshTriangle& t, Real margin, Real backReach, TriangleManifold tm,
+                         const MeshTriangle& t, Real margin, TriangleManifold tm,
                          EdgeContacts& out);
 
 /// After every triangle is filed: adds the gap points no triangle holds, and falls back on the
