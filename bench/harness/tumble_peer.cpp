@@ -12,8 +12,8 @@ namespace {
 
 class TumbleWorld final : public PeerWorld {
 public:
-    explicit TumbleWorld(const SceneSettings& s)
-        : world_(worldDef(s)),
+    explicit TumbleWorld(const SceneSettings& s, int softSubsteps = 0)
+        : world_(worldDef(s, softSubsteps)),
           friction_(s.friction),
           restitution_(s.restitution),
           cubeMass_(s.boxMass) {}
@@ -72,8 +72,9 @@ public:
     Real deepestPenetration() const override { return world_.solverStats().deepestPenetration; }
 
 private:
-    static WorldDef worldDef(const SceneSettings& s) {
+    static WorldDef worldDef(const SceneSettings& s, int softSubsteps) {
         WorldDef def{.gravity = s.gravity, .timeStep = s.timeStep};
+        def.solver.softSubsteps = softSubsteps;
         def.solver.iterations = s.tumbleIterations >= 0 ? s.tumbleIterations : s.iterations;
         def.solver.relaxIterations =
             s.tumbleRelaxIterations >= 0 ? s.tumbleRelaxIterations : s.iterations;
@@ -111,6 +112,10 @@ private:
 
 std::unique_ptr<PeerWorld> createTumble(const SceneSettings& settings) {
     return std::make_unique<TumbleWorld>(settings);
+}
+
+std::unique_ptr<PeerWorld> createTumbleSoft(const SceneSettings& settings) {
+    return std::make_unique<TumbleWorld>(settings, settings.tumbleSoftSubsteps);
 }
 
 const World* tumbleWorld(const PeerWorld& world) {

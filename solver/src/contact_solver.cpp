@@ -199,6 +199,18 @@ void checkSolverSettings(const SolverSettings& s) {
         fail("SolverSettings.restitutionThreshold = ", s.restitutionThreshold,
              " (m/s) must be finite and >= 0");
     }
+    if (s.softSubsteps < 0)
+        fail("SolverSettings.softSubsteps = ", s.softSubsteps, " must be >= 0");
+    if (!(std::isfinite(s.contactHertz) && s.contactHertz > 0))
+        fail("SolverSettings.contactHertz = ", s.contactHertz, " (Hz) must be finite and > 0");
+    if (!(std::isfinite(s.contactDampingRatio) && s.contactDampingRatio >= 0)) {
+        fail("SolverSettings.contactDampingRatio = ", s.contactDampingRatio,
+             " must be finite and >= 0");
+    }
+    if (!(std::isfinite(s.maxPushOutSpeed) && s.maxPushOutSpeed > 0)) {
+        fail("SolverSettings.maxPushOutSpeed = ", s.maxPushOutSpeed,
+             " (m/s) must be finite and > 0");
+    }
 }
 
 Real ContactSolver::prepare(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,

@@ -121,7 +121,7 @@ void SweepRows::add(const ContactConstraint& c, std::uint32_t index,
 
 Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                       std::span<NormalFactor> factors, const SolverSettings& settings,
-                      Real inverseH, Real bias) {
+                      Real inverseH, Real bias, const Real* softScales) {
     Real largestChange = 0;
     for (const SweepManifold& m : manifolds_) {
         SolverBody& bodyA = bodies[m.bodyA];
@@ -150,12 +150,51 @@ Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint>
         if (!m.grouped) {
             const Mat4* block = m.block == SweepManifold::kNoBlock ? nullptr : &blocks_[m.block];
             solveNormals(a, b, m.normal, block, points, m.pointCount, factors[m.constraint],
-                         settings, inverseH, bias, largestChange);
+                         settings, inverseH, bias, largestChange, softScales);
         }
         a.store(bodyA);
         b.store(bodyB);
     }
     return largestChange;
+}
+
+void SweepRows::softTargets(std::span<const ContactConstraint> constraints) {
+    for (const SweepManifold& m : manifolds_) {
+        const ContactConstraint& c = constraints[m.constraint];
+        const std::uint8_t pressed = m.bodyA == 0 || m.bodyB == 0 ? 2 : 1;  // body 0: static
+        for (int i = 0; i < m.pointCount; ++i) {
+            SweepPoint& p = points_[m.firstPoint + i];
+            p.separation = c.points[i].separation;
+            p.bounces = false;
+            p.bounceCorrection = 0;
+            p.soft = p.separation > 0 ? 0 : pressed;
+        }
+    }
+}
+
+void SweepRows::warmStart(std::span<SolverBody> bodies,
+                          std::span<const ContactConstraint> constraints) {
+    for (const SweepManifold& m : manifolds_) {
+        SolverBody& a = bodies[m.bodyA];
+        SolverBody& b = bodies[m.bodyB];
+        for (int i = 0; i < m.pointCount; ++i) {
+            const SweepPoint& p = points_[m.firstPoint + i];
+            applyNormal(a, b, m.normal, p, p.normalImpulse);
+            const Vec3 linear =
+                p.tangentImpulse[0] * m.tangents[0] + p.tangentImpulse[1] * m.tangents[1];
+            a.linearVelocity -= a.inverseMass * linear;
+            a.angularVelocity -= p.tangentImpulse[0] * p.tangentImpulseA[0] +
+                                 p.tangentImpulse[1] * p.tangentImpulseA[1];
+            b.linearVelocity += b.inverseMass * linear;
+            b.angularVelocity += p.tangentImpulse[0] * p.tangentImpulseB[0] +
+                                 p.tangentImpulse[1] * p.tangentImpulseB[1];
+        }
+        if (m.angular) {
+            const Vec3& turn = constraints[m.constraint].angularImpulse;
+            a.angularVelocity -= a.inverseInertia * turn;
+            b.angularVelocity += b.inverseInertia * turn;
+        }
+    }
 }
 
 void SweepRows::readGroupImpulses(std::span<const ContactConstraint> constraints) {

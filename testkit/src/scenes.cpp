@@ -9,8 +9,21 @@
 
 namespace tumble::testkit {
 
+namespace {
+int softSubstepsOverride = 0;  // forceSoftStep
+}  // namespace
+
+void forceSoftStep(int substeps) {
+    softSubstepsOverride = substeps;
+}
+
+int forcedSoftSubsteps() {
+    return softSubstepsOverride;
+}
+
 WorldDef quietWorld(Real timeStep, const Vec3& gravity) {
     WorldDef def;
+    def.solver.softSubsteps = softSubstepsOverride;
     def.gravity = gravity;
     def.timeStep = timeStep;
     def.enableSleep = false;

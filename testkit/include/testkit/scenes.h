@@ -22,6 +22,13 @@ WorldDef quietWorld(Real timeStep = 1.0 / 60.0, const Vec3& gravity = Vec3(0, 0,
 /// quietWorld without gravity.
 WorldDef weightlessWorld(Real timeStep = 1.0 / 60.0);
 
+/// Every world quietWorld and its callers build from now on runs the soft step with this many
+/// substeps (SolverSettings::softSubsteps; 0, the default: the solver's default). For
+/// tumble-validate --soft-step, which checks the cases' claims under it.
+void forceSoftStep(int substeps);
+/// The count forceSoftStep set (0 unless set).
+int forcedSoftSubsteps();
+
 /// The settings of the validation study's and the peers' stack scenes (DESIGN.md section 6):
 /// quietWorld at `timeStep` with `iterations` PGS iterations.
 WorldDef stackWorld(Real timeStep = 1.0 / 60.0, int iterations = 10);

@@ -159,6 +159,24 @@ struct PseudoVelocity {
     Vec3 angular = Vec3::Zero();
 };
 
+/// How far a body has moved since the step began (the soft step's separations follow it).
+struct BodyDisplacement {
+    Vec3 translation = Vec3::Zero();
+    Mat3 rotation = Mat3::Identity();  ///< R_now R_start^-1
+};
+
+/// The soft step's contact coefficients for one substep (softContact()), by SweepPoint::soft:
+/// 0 rigid (speculative), 1 between moving bodies, 2 against a static body.
+struct SoftContact {
+    std::array<Real, 3> massScale{1, 1, 1};  ///< the rigid answer's share the row keeps
+    std::array<Real, 3> biasRate{0, 0, 0};   ///< push-out speed per metre of depth (1/s)
+    Real maxPush = 0;                        ///< (m/s)
+    Real slop = 0;  ///< the rows' slop (m): the depth softTargets writes adds it back
+};
+
+/// The soft step's coefficients for a substep of length h (docs/ARCHITECTURE.md).
+SoftContact softContact(const SolverSettings& settings, Real h);
+
 /// The contact rows' part of a solve (ConstraintSolver runs the stages and the other rows).
 /// Everything a step carries over lives in the constraints; the members are this step's groups
 /// of exactly solved rows and scratch.
@@ -187,7 +205,42 @@ public:
     /// compact narrow rows).
     void finish(std::span<ContactConstraint> constraints) const;
 
+    // The soft step (soft_contacts.cpp; SolveStage::runSoft runs the substeps). prepare() ran
+    // with the scalar rows and the cached impulses divided among the substeps.
+    /// Keeps each point's separation at the step's start and its bounce (applied once, at the
+    /// end), and zeroes the sums of the substeps' impulses.
+    void beginSoft(std::span<ContactConstraint> constraints);
+    /// The separations where the bodies now stand (`moved`, by solver body), as the rows'
+    /// targets under `soft`: the speculative gap, or the capped push-out encoded as a depth
+    /// that the biased sweep (bias = h) turns into it.
+    void softTargets(std::span<ContactConstraint> constraints,
+                     std::span<const BodyDisplacement> moved, const SoftContact& soft);
+    /// A substep's warm start: the accumulated impulses applied again.
+    void softWarmStart(std::span<SolverBody> bodies,
+                       std::span<const ContactConstraint> constraints) {
+        narrow_.warmStart(bodies, constraints);
+    }
+    /// One sweep of a substep: soft and biased (`soft` given) or rigid without bias (null).
+    void softSweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
+                   const SolverSettings& settings, Real inverseH, const SoftContact* soft);
+    /// After a substep: its impulses into the constraints and added to the sums.
+    void endSoftSubstep(std::span<ContactConstraint> constraints);
+    /// After the last substep: restitution once, then the step's sums into the constraints.
+    void endSoft(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints);
+
 private:
+    /// One constraint's impulses summed over the substeps (N s).
+    struct SoftSum {
+        std::array<Real, 4> normal{};
+        std::array<std::array<Real, 2>, 4> tangent{};
+        Vec3 angular = Vec3::Zero();
+    };
+    struct SoftBounce {
+        std::uint32_t constraint = 0;
+        int point = 0;
+        Real target = 0;  ///< v_n after the bounce (m/s)
+    };
+
     NormalIslands islands_;                  ///< normal rows of small, ill-conditioned groups,
                                              ///< solved exactly
     std::vector<SolverBody> supportBodies_;  ///< scratch of addSupportAcceleration
@@ -196,6 +249,9 @@ private:
     SweepRows narrow_;                       ///< the scalar sweep's compact rows, otherwise
     bool wide_ = false;                      ///< this step sweeps rows_
     bool bounceCorrections_ = false;         ///< some point has one this step
+    std::vector<Real> softStart_;            ///< soft step: 4 separations per constraint (m)
+    std::vector<SoftSum> softSums_;          ///< soft step: per constraint
+    std::vector<SoftBounce> softBounces_;    ///< soft step: the points that bounce
 };
 
 }  // namespace tumble

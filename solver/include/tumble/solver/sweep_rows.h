@@ -42,6 +42,9 @@ struct SweepPoint {
     Vec3 angularImpulseA = Vec3::Zero();    ///< IA^-1 (rA x n)
     Vec3 angularImpulseB = Vec3::Zero();    ///< IB^-1 (rB x n)
     bool bounces = false;
+    /// Soft step: which mass scale the biased sweep gives the point (0 rigid: a speculative
+    /// point; 1 between moving bodies; 2 against a static body). In the padding: no size.
+    std::uint8_t soft = 0;
 };
 
 /// A manifold's header: its bodies, basis and where its points and block are.
@@ -67,10 +70,16 @@ public:
     /// Appends prepared constraint `index` (after the warm start and the groups' selection).
     void add(const ContactConstraint& c, std::uint32_t index, const SolverSettings& settings);
     /// One sweep, as ContactSolver::solveVelocitySweep (which calls it) without the exactly
-    /// solved groups; returns the largest velocity change (m/s) when measuring.
+    /// solved groups; returns the largest velocity change (m/s) when measuring. `softScales`:
+    /// the soft step's mass scales by SweepPoint::soft (its biased sweep), or null.
     Real sweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                std::span<NormalFactor> factors, const SolverSettings& settings, Real inverseH,
-               Real bias);
+               Real bias, const Real* softScales = nullptr);
+    /// Soft step: the points' separations (and targets) from the constraints', no bounce in the
+    /// rows, and each point's mass scale class (SweepPoint::soft).
+    void softTargets(std::span<const ContactConstraint> constraints);
+    /// Soft step: the accumulated impulses applied to the bodies again (a substep's warm start).
+    void warmStart(std::span<SolverBody> bodies, std::span<const ContactConstraint> constraints);
     /// The normal impulses of the grouped manifolds, after the groups' solve.
     void readGroupImpulses(std::span<const ContactConstraint> constraints);
     /// Split impulse's relax sweeps aim at the rebound alone (see ConstraintSolver::relax).

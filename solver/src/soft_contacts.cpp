@@ -1,0 +1,144 @@
+// The contact rows' part of the soft step (docs/ARCHITECTURE.md, "The soft step").
+#include <algorithm>
+#include <numbers>
+
+#include "contact_kernels.h"
+#include "normal_block.h"
+#include "tumble/solver/contact_solver.h"
+
+namespace tumble {
+namespace {
+
+// A contact held by a spring k = m w^2 and a damper c = 2 m zeta w on its depth, integrated by
+// implicit Euler over h, is a rigid row that keeps `massScale` of the rigid answer (m the row's
+// effective mass), aims at pushing out `biasRate` x depth per second, and lets go of the rest
+// of its accumulated impulse: lambda = massScale (lambda_old - m (v_n - biasRate d)). Its
+// stiffness is relative to m, so a light body on a heavy one is as stiff as the reverse.
+void setSoft(SoftContact& soft, int kind, Real hertz, Real dampingRatio, Real h) {
+    const Real omega = 2 * std::numbers::pi * hertz;
+    const Real a1 = 2 * dampingRatio + h * omega;
+    const Real a2 = h * omega * a1;
+    soft.massScale[kind] = a2 / (1 + a2);
+    soft.biasRate[kind] = omega / a1;
+}
+
+}  // namespace
+
+// A spring faster than a quarter of the substep rate is not resolved by one iteration a
+// substep (Box2D's limit); against a static body, which takes none of the motion, twice as stiff.
+SoftContact softContact(const SolverSettings& settings, Real h) {
+    SoftContact soft;
+    const Real hertz = std::min(settings.contactHertz, 0.25 / h);
+    setSoft(soft, 1, hertz, settings.contactDampingRatio, h);
+    setSoft(soft, 2, 2 * hertz, settings.contactDampingRatio, h);
+    soft.maxPush = settings.maxPushOutSpeed;
+    soft.slop = settings.slop;
+    return soft;
+}
+
+void ContactSolver::beginSoft(std::span<ContactConstraint> constraints) {
+    softStart_.resize(4 * constraints.size());
+    softSums_.assign(constraints.size(), SoftSum{});
+    softBounces_.clear();
+    for (std::size_t j = 0; j < constraints.size(); ++j) {
+        ContactConstraint& c = constraints[j];
+        for (int i = 0; i < c.pointCount; ++i) {
+            ContactConstraintPoint& p = c.points[i];
+            softStart_[4 * j + i] = p.separation;
+            if (p.bounces) {
+                softBounces_.push_back(
+                    {static_cast<std::uint32_t>(j), i, -c.restitution * p.approachSpeed});
+            }
+            p.bounces = false;  // the exactly solved groups read them from here
+            p.bounceCorrection = 0;
+        }
+    }
+}
+
+// s = s0 + n . (dB - dA), d the displacement of the body's material point at the contact:
+// t + (R - 1) r, with the anchors and the normal of the step's start (the collision is not run
+// again). The biased target is the spring's push-out, capped, from the whole depth: the spring
+// has no dead zone, or a resting body would creep through the slop at the (1 - massScale) of its
+// weight the soft row gives way each substep (1.2 mm/s on the ground at 60 Hz). The rows compute
+// bias / h x (depth - slop), so with bias = h the depth written is slop + that push.
+void ContactSolver::softTargets(std::span<ContactConstraint> constraints,
+                                std::span<const BodyDisplacement> moved, const SoftContact& soft) {
+    for (std::size_t j = 0; j < constraints.size(); ++j) {
+        ContactConstraint& c = constraints[j];
+        const BodyDisplacement& a = moved[c.bodyA];
+        const BodyDisplacement& b = moved[c.bodyB];
+        const Vec3 shift = b.translation - a.translation;
+        const int kind = c.bodyA == 0 || c.bodyB == 0 ? 2 : 1;
+        for (int i = 0; i < c.pointCount; ++i) {
+            ContactConstraintPoint& p = c.points[i];
+            const Vec3 d = shift + (b.rotation * p.rB - p.rB) - (a.rotation * p.rA - p.rA);
+            const Real s = softStart_[4 * j + i] + c.normal.dot(d);
+            if (s > 0) {
+                p.separation = s;
+                continue;
+            }
+            const Real push = std::min(-soft.biasRate[kind] * s, soft.maxPush);
+            p.separation = -soft.slop - push;
+        }
+    }
+    narrow_.softTargets(constraints);
+}
+
+void ContactSolver::softSweep(std::span<SolverBody> bodies,
+                              std::span<ContactConstraint> constraints,
+                              const SolverSettings& settings, Real inverseH,
+                              const SoftContact* soft) {
+    const Real bias = soft != nullptr ? 1 / inverseH : 0;
+    narrow_.sweep(bodies, constraints, factors_, settings, inverseH, bias,
+                  soft != nullptr ? soft->massScale.data() : nullptr);
+    if (!islands_.empty()) {
+        islands_.solve(bodies, constraints, settings.relaxation, bias, settings.slop, inverseH);
+        narrow_.readGroupImpulses(constraints);
+    }
+}
+
+void ContactSolver::endSoftSubstep(std::span<ContactConstraint> constraints) {
+    narrow_.store(constraints);
+    for (std::size_t j = 0; j < constraints.size(); ++j) {
+        const ContactConstraint& c = constraints[j];
+        SoftSum& sum = softSums_[j];
+        for (int i = 0; i < c.pointCount; ++i) {
+            sum.normal[i] += c.points[i].normalImpulse;
+            sum.tangent[i][0] += c.points[i].tangentImpulse[0];
+            sum.tangent[i][1] += c.points[i].tangentImpulse[1];
+        }
+        sum.angular += c.angularImpulse;
+    }
+}
+
+// Newton's law once, on the velocities the substeps left, for the points that approached
+// faster than the threshold and carried load within the step: v_n >= -e v_n-, the impulse
+// added to the last substep's (which it may not make negative) and to the step's sum.
+void ContactSolver::endSoft(std::span<SolverBody> bodies,
+                            std::span<ContactConstraint> constraints) {
+    for (const SoftBounce& bounce : softBounces_) {
+        ContactConstraint& c = constraints[bounce.constraint];
+        ContactConstraintPoint& p = c.points[bounce.point];
+        Real& sum = softSums_[bounce.constraint].normal[bounce.point];
+        if (!(sum > 0))
+            continue;
+        SolverBody& a = bodies[c.bodyA];
+        SolverBody& b = bodies[c.bodyB];
+        const Real vn = normalSpeed(a, b, c.normal, p);
+        const Real next = std::max<Real>(0, p.normalImpulse + p.normalMass * (bounce.target - vn));
+        applyNormal(a, b, c.normal, p, next - p.normalImpulse);
+        sum += next - p.normalImpulse;
+        p.normalImpulse = next;
+    }
+    for (std::size_t j = 0; j < constraints.size(); ++j) {
+        ContactConstraint& c = constraints[j];
+        const SoftSum& sum = softSums_[j];
+        for (int i = 0; i < c.pointCount; ++i) {
+            c.points[i].normalImpulse = sum.normal[i];
+            c.points[i].tangentImpulse = sum.tangent[i];
+        }
+        c.angularImpulse = sum.angular;
+    }
+}
+
+}  // namespace tumble
