@@ -53,7 +53,7 @@ void SolveStage::softSubsteps(BodyStore& bodies, std::span<ContactConstraint> co
     ContactSolver& solver = solver_.contacts();
     softStart_.resize(bodies.awake.size());
     for (std::size_t k = 0; k < bodies.awake.size(); ++k)
-        softStart_[k] = bodies.motion[bodies.awake[k]];
+        softStart_[k] = bodies.motion[bodies.awake[k]].center;
     moved_.assign(solverBodies_.size(), BodyDisplacement{});
     for (int k = 0; k < n; ++k) {
         storeVelocities(bodies);
@@ -69,7 +69,7 @@ void SolveStage::softSubsteps(BodyStore& bodies, std::span<ContactConstraint> co
         solver.softSweep(solverBodies_, constraints, settings, sub.inverseH, &soft);
         storeVelocities(bodies);
         integratePositions(bodies, {}, sub);
-        measureDisplacements(bodies);
+        measureDisplacements(bodies, sub.h);
         solver.softTargets(constraints, moved_, soft);
         solver.softSweep(solverBodies_, constraints, settings, sub.inverseH, nullptr);
         solver.endSoftSubstep(constraints);
@@ -78,13 +78,12 @@ void SolveStage::softSubsteps(BodyStore& bodies, std::span<ContactConstraint> co
     storeVelocities(bodies);
 }
 
-void SolveStage::measureDisplacements(const BodyStore& bodies) {
+void SolveStage::measureDisplacements(const BodyStore& bodies, Real h) {
     for (std::size_t k = 0; k < bodies.awake.size(); ++k) {
         const BodyMotion& now = bodies.motion[bodies.awake[k]];
-        const BodyMotion& start = softStart_[k];
         BodyDisplacement& d = moved_[1 + k];
-        d.translation = now.center - start.center;
-        d.rotation = (now.orientation * start.orientation.conjugate()).toRotationMatrix();
+        d.translation = now.center - softStart_[k];
+        d.turn += h * now.angularVelocity;  // what integratePositions turned it by
     }
 }
 

@@ -79,8 +79,9 @@ private:
     /// The soft step's substeps on the prepared constraints (soft_step.cpp).
     void softSubsteps(BodyStore& bodies, std::span<ContactConstraint> constraints,
                       const StepContext& context, const SolverSettings& settings);
-    /// Every awake body's displacement since the step began (into moved_).
-    void measureDisplacements(const BodyStore& bodies);
+    /// Every awake body's displacement since the step began (into moved_), after a substep
+    /// of length h.
+    void measureDisplacements(const BodyStore& bodies, Real h);
     /// projectSprings()'s rows' geometry at the new positions and their errors; returns the
     /// largest (m).
     Real projectionErrors(const BodyStore& bodies, const SpringStore& springs,
@@ -126,7 +127,7 @@ private:
     // The soft step.
     bool softRun_ = false;                 ///< the last solve was a soft step
     SolverProfile softProfile_;            ///< its stages' times
-    std::vector<BodyMotion> softStart_;    ///< awake bodies' motion at the step's start
+    std::vector<Vec3> softStart_;          ///< awake bodies' centres at the step's start
     std::vector<BodyDisplacement> moved_;  ///< by solver body: since the step's start
 };
 

@@ -158,13 +158,12 @@ Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint>
     return largestChange;
 }
 
-void SweepRows::softTargets(std::span<const ContactConstraint> constraints) {
+void SweepRows::softTargets(std::span<const Real> separations) {
     for (const SweepManifold& m : manifolds_) {
-        const ContactConstraint& c = constraints[m.constraint];
         const std::uint8_t pressed = m.bodyA == 0 || m.bodyB == 0 ? 2 : 1;  // body 0: static
         for (int i = 0; i < m.pointCount; ++i) {
             SweepPoint& p = points_[m.firstPoint + i];
-            p.separation = c.points[i].separation;
+            p.separation = separations[m.firstPoint + i];
             p.bounces = false;
             p.bounceCorrection = 0;
             p.soft = p.separation > 0 ? 0 : pressed;

@@ -161,8 +161,8 @@ struct PseudoVelocity {
 
 /// How far a body has moved since the step began (the soft step's separations follow it).
 struct BodyDisplacement {
-    Vec3 translation = Vec3::Zero();
-    Mat3 rotation = Mat3::Identity();  ///< R_now R_start^-1
+    Vec3 translation = Vec3::Zero();  ///< of the centre of mass (m)
+    Vec3 turn = Vec3::Zero();         ///< the substeps' rotation vectors h w, summed (rad)
 };
 
 /// The soft step's contact coefficients for one substep (softContact()), by SweepPoint::soft:
@@ -235,6 +235,18 @@ private:
         std::array<std::array<Real, 2>, 4> tangent{};
         Vec3 angular = Vec3::Zero();
     };
+    /// A point as the soft step's separations need it, in the scalar rows' order.
+    struct SoftPoint {
+        static constexpr std::uint32_t kNotGrouped = ~0u;
+        Vec3 rA;
+        Vec3 rB;
+        Vec3 normal;
+        Real start;  ///< separation at the step's start (m)
+        std::uint32_t bodyA;
+        std::uint32_t bodyB;
+        std::uint32_t grouped;  ///< 4 x constraint + point when NormalIslands solves it
+        std::uint8_t kind;      ///< SoftContact's: 1 moving pair, 2 against a static body
+    };
     struct SoftBounce {
         std::uint32_t constraint = 0;
         int point = 0;
@@ -249,7 +261,8 @@ private:
     SweepRows narrow_;                       ///< the scalar sweep's compact rows, otherwise
     bool wide_ = false;                      ///< this step sweeps rows_
     bool bounceCorrections_ = false;         ///< some point has one this step
-    std::vector<Real> softStart_;            ///< soft step: 4 separations per constraint (m)
+    std::vector<SoftPoint> softPoints_;      ///< soft step
+    std::vector<Real> softSeparations_;      ///< soft step: the rows' current ones (m)
     std::vector<SoftSum> softSums_;          ///< soft step: per constraint
     std::vector<SoftBounce> softBounces_;    ///< soft step: the points that bounce
 };

@@ -75,9 +75,9 @@ public:
     Real sweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                std::span<NormalFactor> factors, const SolverSettings& settings, Real inverseH,
                Real bias, const Real* softScales = nullptr);
-    /// Soft step: the points' separations (and targets) from the constraints', no bounce in the
+    /// Soft step: the points' separations (one per point, in the rows' order), no bounce in the
     /// rows, and each point's mass scale class (SweepPoint::soft).
-    void softTargets(std::span<const ContactConstraint> constraints);
+    void softTargets(std::span<const Real> separations);
     /// Soft step: the accumulated impulses applied to the bodies again (a substep's warm start).
     void warmStart(std::span<SolverBody> bodies, std::span<const ContactConstraint> constraints);
     /// The normal impulses of the grouped manifolds, after the groups' solve.
