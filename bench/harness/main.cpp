@@ -256,6 +256,12 @@ int main(int argc, char** argv) {
                    "also run Tumble with the soft step of this many substeps "
                    "(SolverSettings::softSubsteps) as engine tumble-soft, beside its default")
         ->check(CLI::PositiveNumber);
+    double tumbleSoftHertz = SolverSettings{}.contactHertz;
+    app.add_option("--tumble-soft-hertz", tumbleSoftHertz,
+                   "tumble-soft's SolverSettings::contactHertz (capped at a quarter of the "
+                   "substep rate)")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
     std::vector<std::string> engines;
     app.add_option(
         "--engine", engines,
@@ -303,7 +309,8 @@ int main(int argc, char** argv) {
                                  .frictionAnchors = anchors,
                                  .tumbleIterations = tumbleIterations,
                                  .tumbleRelaxIterations = tumbleRelax,
-                                 .tumbleSoftSubsteps = tumbleSoft};
+                                 .tumbleSoftSubsteps = tumbleSoft,
+                                 .tumbleSoftHertz = tumbleSoftHertz};
     std::vector<Peer> engineList = peers();
     if (tumbleSoft > 0)
         engineList.insert(engineList.begin() + 1, Peer{"tumble-soft", &createTumbleSoft});

@@ -51,6 +51,7 @@ struct SceneSettings {
     int tumbleRelaxIterations = -1;
     /// The "tumble-soft" engine only (createTumbleSoft): SolverSettings::softSubsteps.
     int tumbleSoftSubsteps = 4;
+    Real tumbleSoftHertz = SolverSettings{}.contactHertz;  ///< SolverSettings::contactHertz
 };
 
 /// The pile's shapes. No cylinders: Debian's ODE is built without libccd and has no

@@ -35,26 +35,17 @@ inline Eigen::Matrix<Real, 2, 1> solveDisc(const DiscBlock& k, const Eigen::Matr
 /// change as a speed at the farthest point (m/s).
 Real solveAngularFriction(SolverBody& a, SolverBody& b, ContactConstraint& c, Real omega);
 
-/// The soft step's mass scale of a point (SweepPoint::soft indexes `scales`); 1 for a point type
-/// without one.
-template <class Point>
-inline Real softScaleOf(const Point& p, const Real* scales) {
-    if constexpr (requires { p.soft; })
-        return scales[p.soft];
-    else
-        return 1;
-}
-
 /// The normal rows of one manifold of n points (Point: ContactConstraintPoint or SweepPoint):
 /// its block K solved exactly (normal_block.h) with the cached factor, or point by point when it
 /// has one point or the block is degenerate. K is read only when n > 1 or when measuring. Raises
 /// largestChange to the velocity change when settings.tolerance > 0. Body: as normalSpeed's.
-/// `softScales` (the soft step's biased sweep, or null): each point's rigid answer is scaled by
-/// its mass scale, which makes the row a spring-damper (docs/ARCHITECTURE.md, the soft step).
+/// `softScale` (the soft step's biased sweep, or null): the rigid answer of each point that
+/// touches (separation <= 0) is scaled by it, which makes the row a spring-damper
+/// (docs/ARCHITECTURE.md, the soft step); speculative points stay rigid.
 template <class Body, class Point>
 void solveNormals(Body& a, Body& b, const Vec3& normal, const Mat4* k, Point* points, int n,
                   NormalFactor& factor, const SolverSettings& settings, Real inverseH, Real bias,
-                  Real& largestChange, const Real* softScales = nullptr) {
+                  Real& largestChange, const Real* softScale = nullptr) {
     const Real omega = settings.relaxation;
     Vec4 old = Vec4::Zero();
     Vec4 next = Vec4::Zero();
@@ -72,9 +63,9 @@ void solveNormals(Body& a, Body& b, const Vec3& normal, const Mat4* k, Point* po
                  solveNormalBlock(*k, n, c, exact, factor);
     }
     if (solved) {
-        if (softScales != nullptr) {
+        if (softScale != nullptr) {
             for (int i = 0; i < n; ++i)
-                exact(i) *= softScaleOf(points[i], softScales);
+                exact(i) *= points[i].separation > 0 ? 1 : *softScale;
         }
         next = (old + omega * (exact - old)).cwiseMax(0);
         for (int i = 0; i < n; ++i)
@@ -85,10 +76,11 @@ void solveNormals(Body& a, Body& b, const Vec3& normal, const Mat4* k, Point* po
             Point& p = points[i];
             const Real vn =
                 normalSpeed(a, b, normal, p) - normalTarget(p, bias, settings.slop, inverseH);
-            if (softScales == nullptr) {
+            if (softScale == nullptr) {
                 next(i) = std::max<Real>(0, old(i) - omega * p.normalMass * vn);
             } else {
-                const Real soft = softScaleOf(p, softScales) * (old(i) - p.normalMass * vn);
+                const Real scale = p.separation > 0 ? 1 : *softScale;
+                const Real soft = scale * (old(i) - p.normalMass * vn);
                 next(i) = std::max<Real>(0, old(i) + omega * (soft - old(i)));
             }
             applyNormal(a, b, normal, p, next(i) - old(i));

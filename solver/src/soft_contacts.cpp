@@ -58,6 +58,7 @@ void ContactSolver::beginSoft(std::span<ContactConstraint> constraints) {
         }
     }
     softSeparations_.resize(softPoints_.size());
+    narrow_.dropBounces();
 }
 
 // s = s0 + n . (dB - dA), d the displacement of the body's material point at the contact to

@@ -149,8 +149,12 @@ Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint>
         }
         if (!m.grouped) {
             const Mat4* block = m.block == SweepManifold::kNoBlock ? nullptr : &blocks_[m.block];
+            // The soft step's kinds (SoftContact): 2 against a static body (body 0), else 1.
+            const Real* softScale = softScales == nullptr
+                                        ? nullptr
+                                        : softScales + (m.bodyA == 0 || m.bodyB == 0 ? 2 : 1);
             solveNormals(a, b, m.normal, block, points, m.pointCount, factors[m.constraint],
-                         settings, inverseH, bias, largestChange, softScales);
+                         settings, inverseH, bias, largestChange, softScale);
         }
         a.store(bodyA);
         b.store(bodyB);
@@ -159,15 +163,14 @@ Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint>
 }
 
 void SweepRows::softTargets(std::span<const Real> separations) {
-    for (const SweepManifold& m : manifolds_) {
-        const std::uint8_t pressed = m.bodyA == 0 || m.bodyB == 0 ? 2 : 1;  // body 0: static
-        for (int i = 0; i < m.pointCount; ++i) {
-            SweepPoint& p = points_[m.firstPoint + i];
-            p.separation = separations[m.firstPoint + i];
-            p.bounces = false;
-            p.bounceCorrection = 0;
-            p.soft = p.separation > 0 ? 0 : pressed;
-        }
+    for (std::size_t k = 0; k < points_.size(); ++k)
+        points_[k].separation = separations[k];
+}
+
+void SweepRows::dropBounces() {
+    for (SweepPoint& p : points_) {
+        p.bounces = false;
+        p.bounceCorrection = 0;
     }
 }
 

@@ -165,8 +165,8 @@ struct BodyDisplacement {
     Vec3 turn = Vec3::Zero();         ///< the substeps' rotation vectors h w, summed (rad)
 };
 
-/// The soft step's contact coefficients for one substep (softContact()), by SweepPoint::soft:
-/// 0 rigid (speculative), 1 between moving bodies, 2 against a static body.
+/// The soft step's contact coefficients for one substep (softContact()), by kind: 0 rigid
+/// (speculative points), 1 between moving bodies, 2 against a static body.
 struct SoftContact {
     std::array<Real, 3> massScale{1, 1, 1};  ///< the rigid answer's share the row keeps
     std::array<Real, 3> biasRate{0, 0, 0};   ///< push-out speed per metre of depth (1/s)

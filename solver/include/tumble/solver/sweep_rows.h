@@ -42,9 +42,6 @@ struct SweepPoint {
     Vec3 angularImpulseA = Vec3::Zero();    ///< IA^-1 (rA x n)
     Vec3 angularImpulseB = Vec3::Zero();    ///< IB^-1 (rB x n)
     bool bounces = false;
-    /// Soft step: which mass scale the biased sweep gives the point (0 rigid: a speculative
-    /// point; 1 between moving bodies; 2 against a static body). In the padding: no size.
-    std::uint8_t soft = 0;
 };
 
 /// A manifold's header: its bodies, basis and where its points and block are.
@@ -71,13 +68,14 @@ public:
     void add(const ContactConstraint& c, std::uint32_t index, const SolverSettings& settings);
     /// One sweep, as ContactSolver::solveVelocitySweep (which calls it) without the exactly
     /// solved groups; returns the largest velocity change (m/s) when measuring. `softScales`:
-    /// the soft step's mass scales by SweepPoint::soft (its biased sweep), or null.
+    /// the soft step's mass scales by SoftContact's kinds (its biased sweep), or null.
     Real sweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                std::span<NormalFactor> factors, const SolverSettings& settings, Real inverseH,
                Real bias, const Real* softScales = nullptr);
-    /// Soft step: the points' separations (one per point, in the rows' order), no bounce in the
-    /// rows, and each point's mass scale class (SweepPoint::soft).
+    /// Soft step: the points' separations, one per point in the rows' order.
     void softTargets(std::span<const Real> separations);
+    /// Soft step: no bounce in the rows (restitution is applied once, after the substeps).
+    void dropBounces();
     /// Soft step: the accumulated impulses applied to the bodies again (a substep's warm start).
     void warmStart(std::span<SolverBody> bodies, std::span<const ContactConstraint> constraints);
     /// The normal impulses of the grouped manifolds, after the groups' solve.
