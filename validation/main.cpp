@@ -74,8 +74,12 @@ int main(int argc, char** argv) {
                    "Run the contact cases' worlds with the soft step of this many substeps "
                    "(SolverSettings::softSubsteps; worlds made by the scene kit and bounce)")
         ->check(CLI::PositiveNumber);
+    double softHertz = tumble::SolverSettings{}.contactHertz;
+    app.add_option("--soft-hertz", softHertz, "With --soft-step: SolverSettings::contactHertz")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
     CLI11_PARSE(app, argc, argv);
-    tumble::testkit::forceSoftStep(softStep);
+    tumble::testkit::forceSoftStep(softStep, softHertz);
 
     const std::vector<ValidationCase> cases = tumble::validation::allCases();
     if (list) {

@@ -10,20 +10,25 @@
 namespace tumble::testkit {
 
 namespace {
-int softSubstepsOverride = 0;  // forceSoftStep
+int softSubstepsOverride = 0;                            // forceSoftStep
+Real softHertzOverride = SolverSettings{}.contactHertz;  // forceSoftStep
 }  // namespace
 
-void forceSoftStep(int substeps) {
+void forceSoftStep(int substeps, Real contactHertz) {
     softSubstepsOverride = substeps;
+    softHertzOverride = contactHertz;
 }
 
-int forcedSoftSubsteps() {
-    return softSubstepsOverride;
+void applyForcedSoftStep(SolverSettings& settings) {
+    if (softSubstepsOverride == 0)
+        return;
+    settings.softSubsteps = softSubstepsOverride;
+    settings.contactHertz = softHertzOverride;
 }
 
 WorldDef quietWorld(Real timeStep, const Vec3& gravity) {
     WorldDef def;
-    def.solver.softSubsteps = softSubstepsOverride;
+    applyForcedSoftStep(def.solver);
     def.gravity = gravity;
     def.timeStep = timeStep;
     def.enableSleep = false;
