@@ -12,9 +12,8 @@ SolverStats SolveStage::runSoft(BodyStore& bodies, const ShapeStore& shapes,
     softProfile_ = {};
     pseudo_.clear();  // the substeps move the bodies themselves
     const int n = settings.softSubsteps;
-    // The scalar rows (softTargets writes their targets) and every sweep of the budget run.
+    // Every sweep of the budget runs (the rows, scalar or coloured, take softTargets' targets).
     SolverSettings rows = settings;
-    rows.colouredContacts = false;
     rows.tolerance = 0;
     SolverStats stats;
     std::span<ContactConstraint> constraints;
@@ -65,12 +64,12 @@ void SolveStage::softSubsteps(BodyStore& bodies, std::span<ContactConstraint> co
         }
         if (k > 0)
             solver.softWarmStart(solverBodies_, constraints);
-        solver.softTargets(constraints, moved_, soft);
+        solver.softTargets(constraints, moved_, soft, sub.inverseH);
         solver.softSweep(solverBodies_, constraints, settings, sub.inverseH, &soft);
         storeVelocities(bodies);
         integratePositions(bodies, {}, sub);
         measureDisplacements(bodies, sub.h);
-        solver.softTargets(constraints, moved_, soft);
+        solver.softTargets(constraints, moved_, soft, sub.inverseH);
         solver.softSweep(solverBodies_, constraints, settings, sub.inverseH, nullptr);
         solver.endSoftSubstep(constraints);
     }

@@ -97,6 +97,21 @@ void solveNormals(Body& a, Body& b, const Vec3& normal, const Mat4* k, Point* po
     }
 }
 
+/// The soft step's warm start of one point (Point: ContactConstraintPoint or SweepPoint): its
+/// accumulated normal and friction impulses applied again.
+template <class Point>
+void warmStartPoint(SolverBody& a, SolverBody& b, const Vec3& normal,
+                    const std::array<Vec3, 2>& tangents, const Point& p) {
+    applyNormal(a, b, normal, p, p.normalImpulse);
+    const Vec3 linear = p.tangentImpulse[0] * tangents[0] + p.tangentImpulse[1] * tangents[1];
+    a.linearVelocity -= a.inverseMass * linear;
+    a.angularVelocity -=
+        p.tangentImpulse[0] * p.tangentImpulseA[0] + p.tangentImpulse[1] * p.tangentImpulseA[1];
+    b.linearVelocity += b.inverseMass * linear;
+    b.angularVelocity +=
+        p.tangentImpulse[0] * p.tangentImpulseB[0] + p.tangentImpulse[1] * p.tangentImpulseB[1];
+}
+
 /// solveNormals on a constraint's own points and block.
 inline void solveManifoldNormals(SolverBody& a, SolverBody& b, ContactConstraint& c,
                                  NormalFactor& factor, const SolverSettings& settings,

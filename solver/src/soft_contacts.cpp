@@ -40,15 +40,17 @@ void ContactSolver::beginSoft(std::span<ContactConstraint> constraints) {
     softSums_.assign(constraints.size(), SoftSum{});
     softBounces_.clear();
     softPoints_.clear();
+    softFirst_.resize(constraints.size());
     for (std::size_t j = 0; j < constraints.size(); ++j) {
         ContactConstraint& c = constraints[j];
+        softFirst_[j] = static_cast<std::uint32_t>(softPoints_.size());
         const bool grouped = c.normalGroup != NormalIslands::kNone;
         for (int i = 0; i < c.pointCount; ++i) {
             ContactConstraintPoint& p = c.points[i];
             softPoints_.push_back(
                 {p.rA, p.rB, c.normal, p.separation, c.bodyA, c.bodyB,
                  grouped ? static_cast<std::uint32_t>(4 * j + i) : SoftPoint::kNotGrouped,
-                 c.bodyA == 0 || c.bodyB == 0 ? 2 : 1});
+                 static_cast<std::uint8_t>(c.bodyA == 0 || c.bodyB == 0 ? 2 : 1)});
             if (p.bounces) {
                 softBounces_.push_back(
                     {static_cast<std::uint32_t>(j), i, -c.restitution * p.approachSpeed});
@@ -73,7 +75,8 @@ void ContactSolver::beginSoft(std::span<ContactConstraint> constraints) {
 // push. The points are read from a compact copy in the rows' order (through the constraints, 3 KB
 // each, this pass was a tenth of pyramid-20's soft step).
 void ContactSolver::softTargets(std::span<ContactConstraint> constraints,
-                                std::span<const BodyDisplacement> moved, const SoftContact& soft) {
+                                std::span<const BodyDisplacement> moved, const SoftContact& soft,
+                                Real inverseH) {
     for (std::size_t k = 0; k < softPoints_.size(); ++k) {
         const SoftPoint& q = softPoints_[k];
         const BodyDisplacement& a = moved[q.bodyA];
@@ -86,7 +89,30 @@ void ContactSolver::softTargets(std::span<ContactConstraint> constraints,
         if (q.grouped != SoftPoint::kNotGrouped)
             constraints[q.grouped / 4].points[q.grouped % 4].separation = separation;
     }
-    narrow_.softTargets(softSeparations_);
+    if (wide_)
+        rows_.softTargets(softSeparations_, softFirst_, soft.massScale, soft.slop, inverseH);
+    else
+        narrow_.softTargets(softSeparations_);
+}
+
+// In constraint order, as the scalar rows': the coloured rows' impulses are in the constraints
+// (endSoftSubstep), and every body meets its manifolds in the same order either way.
+void ContactSolver::softWarmStart(std::span<SolverBody> bodies,
+                                  std::span<const ContactConstraint> constraints) {
+    if (!wide_) {
+        narrow_.warmStart(bodies, constraints);
+        return;
+    }
+    for (const ContactConstraint& c : constraints) {
+        SolverBody& a = bodies[c.bodyA];
+        SolverBody& b = bodies[c.bodyB];
+        for (int i = 0; i < c.pointCount; ++i)
+            warmStartPoint(a, b, c.normal, c.tangents, c.points[i]);
+        if (c.spinMass > 0 || c.rollingActive) {
+            a.angularVelocity -= a.inverseInertia * c.angularImpulse;
+            b.angularVelocity += b.inverseInertia * c.angularImpulse;
+        }
+    }
 }
 
 void ContactSolver::softSweep(std::span<SolverBody> bodies,
@@ -94,16 +120,23 @@ void ContactSolver::softSweep(std::span<SolverBody> bodies,
                               const SolverSettings& settings, Real inverseH,
                               const SoftContact* soft) {
     const Real bias = soft != nullptr ? 1 / inverseH : 0;
-    narrow_.sweep(bodies, constraints, factors_, settings, inverseH, bias,
-                  soft != nullptr ? soft->massScale.data() : nullptr);
+    if (wide_) {
+        rows_.sweep(bodies, constraints, factors_, settings, bias, inverseH, soft != nullptr);
+    } else {
+        narrow_.sweep(bodies, constraints, factors_, settings, inverseH, bias,
+                      soft != nullptr ? soft->massScale.data() : nullptr);
+    }
     if (!islands_.empty()) {
         islands_.solve(bodies, constraints, settings.relaxation, bias, settings.slop, inverseH);
-        narrow_.readGroupImpulses(constraints);
+        if (wide_)
+            rows_.readGroupImpulses(constraints);
+        else
+            narrow_.readGroupImpulses(constraints);
     }
 }
 
 void ContactSolver::endSoftSubstep(std::span<ContactConstraint> constraints) {
-    narrow_.store(constraints);
+    finish(constraints);
     for (std::size_t j = 0; j < constraints.size(); ++j) {
         const ContactConstraint& c = constraints[j];
         SoftSum& sum = softSums_[j];

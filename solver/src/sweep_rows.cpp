@@ -179,18 +179,8 @@ void SweepRows::warmStart(std::span<SolverBody> bodies,
     for (const SweepManifold& m : manifolds_) {
         SolverBody& a = bodies[m.bodyA];
         SolverBody& b = bodies[m.bodyB];
-        for (int i = 0; i < m.pointCount; ++i) {
-            const SweepPoint& p = points_[m.firstPoint + i];
-            applyNormal(a, b, m.normal, p, p.normalImpulse);
-            const Vec3 linear =
-                p.tangentImpulse[0] * m.tangents[0] + p.tangentImpulse[1] * m.tangents[1];
-            a.linearVelocity -= a.inverseMass * linear;
-            a.angularVelocity -= p.tangentImpulse[0] * p.tangentImpulseA[0] +
-                                 p.tangentImpulse[1] * p.tangentImpulseA[1];
-            b.linearVelocity += b.inverseMass * linear;
-            b.angularVelocity += p.tangentImpulse[0] * p.tangentImpulseB[0] +
-                                 p.tangentImpulse[1] * p.tangentImpulseB[1];
-        }
+        for (int i = 0; i < m.pointCount; ++i)
+            warmStartPoint(a, b, m.normal, m.tangents, points_[m.firstPoint + i]);
         if (m.angular) {
             const Vec3& turn = constraints[m.constraint].angularImpulse;
             a.angularVelocity -= a.inverseInertia * turn;

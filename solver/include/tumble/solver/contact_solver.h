@@ -214,12 +214,11 @@ public:
     /// targets under `soft`: the speculative gap, or the capped push-out encoded as a depth
     /// that the biased sweep (bias = h) turns into it.
     void softTargets(std::span<ContactConstraint> constraints,
-                     std::span<const BodyDisplacement> moved, const SoftContact& soft);
+                     std::span<const BodyDisplacement> moved, const SoftContact& soft,
+                     Real inverseH);
     /// A substep's warm start: the accumulated impulses applied again.
     void softWarmStart(std::span<SolverBody> bodies,
-                       std::span<const ContactConstraint> constraints) {
-        narrow_.warmStart(bodies, constraints);
-    }
+                       std::span<const ContactConstraint> constraints);
     /// One sweep of a substep: soft and biased (`soft` given) or rigid without bias (null).
     void softSweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                    const SolverSettings& settings, Real inverseH, const SoftContact* soft);
@@ -263,6 +262,7 @@ private:
     bool bounceCorrections_ = false;         ///< some point has one this step
     std::vector<SoftPoint> softPoints_;      ///< soft step
     std::vector<Real> softSeparations_;      ///< soft step: the rows' current ones (m)
+    std::vector<std::uint32_t> softFirst_;   ///< soft step: each constraint's first SoftPoint
     std::vector<SoftSum> softSums_;          ///< soft step: per constraint
     std::vector<SoftBounce> softBounces_;    ///< soft step: the points that bounce
 };
