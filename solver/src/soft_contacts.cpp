@@ -48,7 +48,7 @@ void ContactSolver::beginSoft(std::span<ContactConstraint> constraints) {
         for (int i = 0; i < c.pointCount; ++i) {
             ContactConstraintPoint& p = c.points[i];
             softPoints_.push_back(
-                {p.rA, p.rB, c.normal, p.separation, c.bodyA, c.bodyB,
+                {p.angularA, p.angularB, c.normal, p.separation, c.bodyA, c.bodyB,
                  grouped ? static_cast<std::uint32_t>(4 * j + i) : SoftPoint::kNotGrouped,
                  static_cast<std::uint8_t>(c.bodyA == 0 || c.bodyB == 0 ? 2 : 1)});
             if (p.bounces) {
@@ -65,15 +65,16 @@ void ContactSolver::beginSoft(std::span<ContactConstraint> constraints) {
 
 // s = s0 + n . (dB - dA), d the displacement of the body's material point at the contact to
 // first order in the turn, t + theta x r, with the anchors and the normal of the step's start
-// (the collision is not run again). The exact rotation, t + (R - 1) r, lifts a rolling ball's
-// point by r (1 - cos theta) (1.4 mm a step for r = 0.1 m at 1 m/s, h = 1/60): speculative, the
-// ball lost its support for the step's last substeps, and the rolling-resistance case's
-// roll-out fell 24 % short. The biased target is the spring's push-out, capped, from the whole
-// depth: the spring has no dead zone, or a resting body would creep through the slop at the (1 -
-// massScale) of its weight the soft row gives way each substep (1.2 mm/s on the ground at 60 Hz).
-// The rows compute bias / h x (depth - slop), so with bias = h the depth written is slop + that
-// push. The points are read from a compact copy in the rows' order (through the constraints, 3 KB
-// each, this pass was a tenth of pyramid-20's soft step).
+// (the collision is not run again); n . (theta x r) = theta . (r x n), prepare's angular rows,
+// so a point costs three dot products (two cross products were a tenth of the soft step). The exact
+// rotation, t + (R - 1) r, lifts a rolling ball's point by r (1 - cos theta) (1.4 mm a step for r =
+// 0.1 m at 1 m/s, h = 1/60): speculative, the ball lost its support for the step's last substeps,
+// and the rolling-resistance case's roll-out fell 24 % short. The biased target is the spring's
+// push-out, capped, from the whole depth: the spring has no dead zone, or a resting body would
+// creep through the slop at the (1 - massScale) of its weight the soft row gives way each substep
+// (1.2 mm/s on the ground at 60 Hz). The rows compute bias / h x (depth - slop), so with bias = h
+// the depth written is slop + that push. The points are read from a compact copy in the rows' order
+// (through the constraints, 3 KB each, this pass was a tenth of pyramid-20's soft step).
 void ContactSolver::softTargets(std::span<ContactConstraint> constraints,
                                 std::span<const BodyDisplacement> moved, const SoftContact& soft,
                                 Real inverseH) {
@@ -81,8 +82,8 @@ void ContactSolver::softTargets(std::span<ContactConstraint> constraints,
         const SoftPoint& q = softPoints_[k];
         const BodyDisplacement& a = moved[q.bodyA];
         const BodyDisplacement& b = moved[q.bodyB];
-        const Vec3 d = b.translation - a.translation + b.turn.cross(q.rB) - a.turn.cross(q.rA);
-        const Real s = q.start + q.normal.dot(d);
+        const Real s = q.start + q.normal.dot(b.translation - a.translation) +
+                       b.turn.dot(q.angularB) - a.turn.dot(q.angularA);
         const Real separation =
             s > 0 ? s : -soft.slop - std::min(-soft.biasRate[q.kind] * s, soft.maxPush);
         softSeparations_[k] = separation;

@@ -237,8 +237,8 @@ private:
     /// A point as the soft step's separations need it, in the scalar rows' order.
     struct SoftPoint {
         static constexpr std::uint32_t kNotGrouped = ~0u;
-        Vec3 rA;
-        Vec3 rB;
+        Vec3 angularA;  ///< rA x n (m): theta_A . this is the turn's share of the separation
+        Vec3 angularB;  ///< rB x n (m)
         Vec3 normal;
         Real start;  ///< separation at the step's start (m)
         std::uint32_t bodyA;
