@@ -10,24 +10,11 @@
 namespace tumble::detail {
 namespace {
 
-/// Capsules whose axes make an angle with sine below this are treated as parallel and touch
-/// along a line: two points, so a capsule lying on another does not rock about one point.
-constexpr Real kParallelSine = 1e-3;
-
-struct Segment {
-    Vec3 start = Vec3::Zero();  ///< world (m)
-    Vec3 end = Vec3::Zero();    ///< world (m)
-    Vec3 direction() const { return end - start; }
-};
-
-Segment capsuleSegment(const Capsule& capsule, const Transform& pose) {
-    const Vec3 half = pose.rotation * Vec3(0, 0, capsule.halfLength);
-    return {pose.position - half, pose.position + half};
-}
-
 Real clamp01(Real x) {
     return std::clamp(x, Real(0), Real(1));
 }
+
+}  // namespace
 
 /// Parameters (s on a, t on b, both in [0, 1]) of the closest points of two segments.
 /// Ericson, Real-Time Collision Detection, 5.1.9: minimise |a(s) - b(t)|^2 over the unit square;
@@ -58,6 +45,17 @@ std::pair<Real, Real> closestParameters(const Segment& a, const Segment& b) {
         s = clamp01((ab - c) / aa);
     }
     return {s, t};
+}
+
+namespace {
+
+/// Capsules whose axes make an angle with sine below this are treated as parallel and touch
+/// along a line: two points, so a capsule lying on another does not rock about one point.
+constexpr Real kParallelSine = 1e-3;
+
+Segment capsuleSegment(const Capsule& capsule, const Transform& pose) {
+    const Vec3 half = pose.rotation * Vec3(0, 0, capsule.halfLength);
+    return {pose.position - half, pose.position + half};
 }
 
 /// The contact of two spheres (centres, radii): normal from A to B, separation, midpoint. When

@@ -3,10 +3,22 @@
 /// the signature of CollideFn and handles its two types in the order of its name (A's type <=
 /// B's type in ShapeType order); the manifold normal points from A to B.
 
+#include <utility>
+
 #include "tumble/collision/manifold.h"
 #include "tumble/collision/shape.h"
 
 namespace tumble::detail {
+
+struct Segment {
+    Vec3 start = Vec3::Zero();  ///< (m)
+    Vec3 end = Vec3::Zero();    ///< (m)
+    Vec3 direction() const { return end - start; }
+};
+
+/// Parameters (s on a, t on b, both in [0, 1]) of the closest points of two segments
+/// (collide_spheres.cpp).
+std::pair<Real, Real> closestParameters(const Segment& a, const Segment& b);
 
 using CollideFn = void (*)(const Shape& a, const Transform& poseA, const Shape& b,
                            const Transform& poseB, Real margin, Manifold& out);

@@ -245,8 +245,7 @@ void SolveStage::holdAnchors(const BodyStore& bodies, const ContactManager& cont
                         bodies.motion[bodies.indexOf(contact.bodyB)], context.h, c, lengths,
                         &anchorDrifts_[4 * j]);
     }
-    anchorPass_.run(solverBodies_, constraints, anchorDrifts_, pseudo_, context.inverseH,
-                    lengths.deadband);
+    anchorPass_.run(solverBodies_, constraints, anchorDrifts_, pseudo_, context.inverseH, lengths);
 }
 
 // The rows' geometry at the positions the step ended on, and what each must correct (m): returns

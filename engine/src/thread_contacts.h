@@ -7,9 +7,10 @@
 /// and is no body, so its contacts are rows of their own (solver/segment_contact_row.h) that
 /// split each impulse between the thread's nodes by the contact point's parameter t. Found
 /// each step from the springs: the segment's box (grown by the radius and the speculative
-/// margin) is queried in the broadphase and the capsule collided with every static or kinematic
-/// shape it meets, through the ordinary narrowphase. Where a node has shapes of its own, the
-/// capsule starts a radius away from it: what lies nearer is the node's own contacts'.
+/// margin) is tested against the static and kinematic shapes (box by box when they are few, else
+/// through the broadphase) and the capsule collided with every one it meets, through the
+/// ordinary narrowphase. Where a node has shapes of its own, the capsule starts a radius away
+/// from it: what lies nearer is the node's own contacts'.
 ///
 /// Rows are warm started as the contacts are: each takes the impulses the previous step's
 /// nearest row of the same spring and shape ended with (its point within a contact radius along
@@ -65,6 +66,9 @@ public:
 
 private:
     friend struct CheckpointAccess;  ///< checkpoint.cpp saves and restores the cache
+    /// The static and kinematic shapes' slots into fixedShapes_, in slot order, up to one past
+    /// the number candidates() tests one by one.
+    void listFixedShapes(const BodyStore& bodies, const ShapeStore& shapes);
     /// Static and kinematic shapes whose tight box meets `box`, in slot order, into shapes_;
     /// half-spaces only when `planes`.
     void candidates(const Aabb& box, bool planes, const BodyStore& bodies, const ShapeStore& shapes,
@@ -83,20 +87,19 @@ private:
     std::vector<Cached> cache_;       ///< the previous step's solved rows, by spring then slot
     std::vector<std::uint8_t> lent_;  ///< scratch: cache_ entries already lent this step
     std::size_t cursor_ = 0;          ///< scratch: first cache_ entry of the spring being built
-    /// Node `index`'s active contacts, gathered once per step on first asking: walking the
-    /// contact list for every row's two nodes was ~9 % of dustbin-mesh's step.
+    /// Node `index`'s active contacts with points; every body's are gathered on the step's first
+    /// asking, from the touching list (gatherNodeContacts).
     std::span<const NodeContact> nodeContacts(std::uint32_t index, const BodyStore& bodies,
                                               const ContactManager& contacts);
+    void gatherNodeContacts(const BodyStore& bodies, const ContactManager& contacts);
 
-    struct Gathered {
-        static constexpr std::uint32_t kNot = ~std::uint32_t(0);
-        std::uint32_t begin = kNot;  ///< into nodeContacts_
-        std::uint32_t end = kNot;
-    };
-    std::vector<std::uint32_t> shapes_;      ///< scratch: candidate shape slots of one thread
-    std::vector<NodeContact> nodeContacts_;  ///< scratch: the nodes' contacts gathered so far
-    std::vector<Gathered> gathered_;         ///< scratch: per body, its range in nodeContacts_
-    ManifoldSet manifolds_;                  ///< scratch
+    std::vector<std::uint32_t> shapes_;       ///< scratch: candidate shape slots of one thread
+    std::vector<std::uint32_t> fixedShapes_;  ///< scratch: listFixedShapes'
+    std::vector<NodeContact> nodeContacts_;   ///< scratch: every body's, by body
+    std::vector<std::uint32_t> nodeFirst_;    ///< scratch: body i's are [first[i], first[i + 1])
+    std::vector<std::uint32_t> nodeFill_;     ///< scratch: gatherNodeContacts' write positions
+    bool gathered_ = false;                   ///< nodeContacts_ holds this step's
+    ManifoldSet manifolds_;                   ///< scratch
 };
 
 }  // namespace tumble

@@ -119,6 +119,8 @@ bool ContactRows::build(std::span<const SolverBody> bodies,
                     block.block[k] = Lane{};
                     block.factor[k] = Lane{} + (k % 5 == 0 ? 1.0 : 0.0);  // identity
                 }
+                for (Lane& inverse : block.inverseDiagonal)
+                    inverse = Lane{} + 1.0;
             }
             bundle.factorSet.fill(NormalFactor::kNone);
             const std::uint32_t lanes = std::min<std::uint32_t>(kWidth, end - start);

@@ -31,6 +31,31 @@ inline Eigen::Matrix<Real, 2, 1> solveDisc(const DiscBlock& k, const Eigen::Matr
     return solveDiscRim(k, b, radius);
 }
 
+/// One point's coupled friction update relaxed by omega: the new impulse `next` and its change
+/// `delta` from `old`. When the free answer old - K^-1 vt is inside the disc (sticking: most
+/// points of a resting stack), the change -omega K^-1 vt is formed directly, four dependent
+/// operations on the sweep's critical path where old + omega (K^-1 (K old - vt) - old) - old
+/// took eight; the two differ by roundings. ContactRows::solveFriction does the same per lane.
+inline void solveRelaxedDisc(const DiscBlock& k, const Eigen::Matrix<Real, 2, 1>& old,
+                             const Eigen::Matrix<Real, 2, 1>& vt, Real radius, Real omega,
+                             Eigen::Matrix<Real, 2, 1>& next, Eigen::Matrix<Real, 2, 1>& delta) {
+    using Vec2 = Eigen::Matrix<Real, 2, 1>;
+    const Real step0 = k.inverse(0, 0) * vt(0) + k.inverse(0, 1) * vt(1);  // K^-1 vt
+    const Real step1 = k.inverse(1, 0) * vt(0) + k.inverse(1, 1) * vt(1);
+    const Real free0 = old(0) - step0;
+    const Real free1 = old(1) - step1;
+    if (radius > 0 && free0 * free0 + free1 * free1 <= radius * radius) {
+        delta = Vec2(-(omega * step0), -(omega * step1));
+        next = Vec2(old(0) + delta(0), old(1) + delta(1));
+        return;
+    }
+    // On the rim (sliding), or no load: the exact disc's answer, relaxed.
+    const Vec2 solved =
+        radius > 0 ? solveDiscRim(k, Vec2(k.block * old - vt), radius) : Vec2(Vec2::Zero());
+    next = Vec2(old(0) + omega * (solved(0) - old(0)), old(1) + omega * (solved(1) - old(1)));
+    delta = Vec2(next(0) - old(0), next(1) - old(1));
+}
+
 /// Torsion and rolling resistance of one manifold, with its current normal impulses; returns the
 /// change as a speed at the farthest point (m/s).
 Real solveAngularFriction(SolverBody& a, SolverBody& b, ContactConstraint& c, Real omega);

@@ -47,20 +47,21 @@ namespace {
 
 // L L' x = -c on the active rows (forward, then back substitution, in solveNormalBlock's
 // order); zero on the others.
-[[gnu::always_inline]] inline void solveFactoredLanes(const Lane* l, const Lane (&c)[4],
+[[gnu::always_inline]] inline void solveFactoredLanes(const Lane* l, const Lane* inverseDiagonal,
+                                                      const Lane (&c)[4],
                                                       const LaneMask (&active)[4], Lane (&x)[4]) {
     Lane y[4];
     for (int i = 0; i < 4; ++i) {
         Lane sum = select(active[i], -c[i], Lane{});
         for (int p = 0; p < i; ++p)
             sum -= l[4 * i + p] * y[p];
-        y[i] = sum / l[5 * i];
+        y[i] = sum * inverseDiagonal[i];
     }
     for (int i = 3; i >= 0; --i) {
         Lane sum = y[i];
         for (int p = i + 1; p < 4; ++p)
             sum -= l[4 * p + i] * x[p];
-        x[i] = sum / l[5 * i];
+        x[i] = sum * inverseDiagonal[i];
     }
 }
 
@@ -225,20 +226,37 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle, const SolverS
         const Lane limit = bundle.friction * q.normalImpulse;
         Lane next0;
         Lane next1;
+        Lane delta0;
+        Lane delta1;
         if (coupled) {
-            const Lane* k = q.tangentBlock;
+            // solveRelaxedDisc (contact_kernels.h) per lane.
             const Lane* inverse = q.tangentInverse;
-            const Lane b0 = (k[0] * old0 + k[1] * old1) - vt[0];
-            const Lane b1 = (k[2] * old0 + k[3] * old1) - vt[1];
+            const Lane step0 = inverse[0] * vt[0] + inverse[1] * vt[1];
+            const Lane step1 = inverse[2] * vt[0] + inverse[3] * vt[1];
+            const Lane free0 = old0 - step0;
+            const Lane free1 = old1 - step1;
             const LaneMask positive = greater(limit, Lane{});
-            Lane solved0 = select(positive, inverse[0] * b0 + inverse[1] * b1, Lane{});
-            Lane solved1 = select(positive, inverse[2] * b0 + inverse[3] * b1, Lane{});
-            const LaneMask rim =
-                positive & greater(solved0 * solved0 + solved1 * solved1, limit * limit);
-            if (any(rim))
+            // As the scalar test: a NaN goes to the rim.
+            const LaneMask sticking =
+                positive &
+                reinterpret_cast<LaneMask>(free0 * free0 + free1 * free1 <= limit * limit);
+            const LaneMask rim = positive & ~sticking;
+            Lane solved0{};
+            Lane solved1{};
+            if (any(rim)) {
+                const Lane* k = q.tangentBlock;
+                const Lane b0 = (k[0] * old0 + k[1] * old1) - vt[0];
+                const Lane b1 = (k[2] * old0 + k[3] * old1) - vt[1];
                 solveRimLanes(q, rim, b0, b1, limit, solved0, solved1);
-            next0 = old0 + omega * (solved0 - old0);
-            next1 = old1 + omega * (solved1 - old1);
+            }
+            const Lane relaxed0 = old0 + omega * (solved0 - old0);
+            const Lane relaxed1 = old1 + omega * (solved1 - old1);
+            const Lane stick0 = -(omega * step0);
+            const Lane stick1 = -(omega * step1);
+            delta0 = select(sticking, stick0, relaxed0 - old0);
+            delta1 = select(sticking, stick1, relaxed1 - old1);
+            next0 = select(sticking, old0 + stick0, relaxed0);
+            next1 = select(sticking, old1 + stick1, relaxed1);
         } else {
             next0 = old0 - omega * (q.tangentMass[0] * vt[0]);
             next1 = old1 - omega * (q.tangentMass[1] * vt[1]);
@@ -246,9 +264,9 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle, const SolverS
             next1 = select(greater(-limit, next1), -limit, next1);
             next0 = select(greater(next0, limit), limit, next0);
             next1 = select(greater(next1, limit), limit, next1);
+            delta0 = next0 - old0;
+            delta1 = next1 - old1;
         }
-        const Lane delta0 = next0 - old0;
-        const Lane delta1 = next1 - old1;
         for (int k = 0; k < 3; ++k) {
             const Lane linear = delta0 * bundle.tangents[0][k] + delta1 * bundle.tangents[1][k];
             v[0][k] -= bundle.inverseMassA * linear;
@@ -347,7 +365,7 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
                              k[4 * i + 3] * old[3]);
         }
         Lane x[4];
-        solveFactoredLanes(block->factor, c, active, x);
+        solveFactoredLanes(block->factor, block->inverseDiagonal, c, active, x);
         LaneMask ok;
         checkActiveSetLanes(k, bundle.hasPoint, c, active, x, ok);
         for (int lane = 0; lane < kWidth; ++lane)
@@ -445,14 +463,18 @@ Real ContactRows::solveNormalsAlone(Bundle& bundle, int lane, ContactConstraint&
     for (int i = 0; i < c.pointCount; ++i)
         points_[bundle.firstPoint + i].normalImpulse[lane] = c.points[i].normalImpulse;
     // The factor it cached, embedded in the identity.
-    Lane* embedded = blocks_[bundle.block].factor;
+    Block& block = blocks_[bundle.block];
+    Lane* embedded = block.factor;
     for (int e = 0; e < 16; ++e)
         embedded[e][lane] = e % 5 == 0 ? 1 : 0;
+    for (Lane& inverse : block.inverseDiagonal)
+        inverse[lane] = 1;
     bundle.factorSet[lane] = factor.set;
     if (factor.set != NormalFactor::kNone) {
         for (int i = 0; i < factor.size; ++i) {
             for (int j = 0; j <= i; ++j)
                 embedded[4 * factor.rows[i] + factor.rows[j]][lane] = factor.l[i][j];
+            block.inverseDiagonal[factor.rows[i]][lane] = factor.inverseDiagonal[i];
         }
     }
     return change;

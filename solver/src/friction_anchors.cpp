@@ -88,10 +88,12 @@ void holdNormals(SolverBody& a, SolverBody& b, const ContactConstraint& c,
 // (a point that needs more lets its anchors go after the step, so the rim is not worth the
 // exact solve of the velocity sweeps).
 void pullPoints(SolverBody& a, SolverBody& b, const ContactConstraint& c, const Vec3* drifts,
-                Vec3* rows, Real inverseH) {
+                Vec3* rows, Real inverseH, Real catchUp) {
     for (int i = 0; i < c.pointCount; ++i) {
         const ContactConstraintPoint& p = c.points[i];
-        const Vec3 v = b.velocityAt(p.rB) - a.velocityAt(p.rA) + inverseH * drifts[i];
+        const Real drift = drifts[i].norm();
+        const Vec3 aim = drift > catchUp ? (catchUp / drift) * drifts[i] : drifts[i];
+        const Vec3 v = b.velocityAt(p.rB) - a.velocityAt(p.rA) + inverseH * aim;
         const Vec2 slip(c.tangents[0].dot(v), c.tangents[1].dot(v));
         const Vec2 old = rows[i].head<2>();
         Vec2 next = old - p.tangent.inverse * slip;
@@ -112,16 +114,16 @@ AnchorLengths AnchorLengths::of(Real slop, Real contactMargin) {
     Real length = slop > 0 ? slop : contactMargin;
     if (!(length > 0))
         length = SolverSettings{}.slop;
-    return {length / 500, 2 * length};
+    return {length / 500, 2 * length, length / 3};
 }
 
 void FrictionAnchorPass::run(std::span<const SolverBody> bodies,
                              std::span<const ContactConstraint> constraints,
                              std::span<const Vec3> drifts, std::vector<PseudoVelocity>& pseudo,
-                             Real inverseH, Real deadband) {
+                             Real inverseH, const AnchorLengths& lengths) {
     active_.clear();
     for (std::size_t j = 0; j < constraints.size(); ++j)
-        if (drifting(constraints[j], &drifts[4 * j], deadband))
+        if (drifting(constraints[j], &drifts[4 * j], lengths.deadband))
             active_.push_back(static_cast<std::uint32_t>(j));
     if (active_.empty())
         return;
@@ -145,7 +147,7 @@ void FrictionAnchorPass::run(std::span<const SolverBody> bodies,
             const ContactConstraint& c = constraints[active_[k]];
             SolverBody& a = bodies_[c.bodyA];
             SolverBody& b = bodies_[c.bodyB];
-            pullPoints(a, b, c, &drifts[4 * active_[k]], &rows_[4 * k], inverseH);
+            pullPoints(a, b, c, &drifts[4 * active_[k]], &rows_[4 * k], inverseH, lengths.catchUp);
             if (c.pointCount > 1)
                 holdNormals(a, b, c, std::span(rows_).subspan(4 * k, c.pointCount), inverses_[k]);
         }

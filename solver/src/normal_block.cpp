@@ -37,6 +37,7 @@ bool factorActive(const Mat4& k, unsigned set, Real eps, NormalFactor& f) {
                 if (!(sum > 0))
                     return false;
                 f.l[i][i] = std::sqrt(sum);
+                f.inverseDiagonal[i] = 1 / f.l[i][i];
             } else {
                 f.l[i][j] = sum / f.l[j][j];
             }

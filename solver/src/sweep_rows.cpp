@@ -48,15 +48,16 @@ Real solveFriction(SweepBody& a, SweepBody& b, const SweepManifold& m, SweepPoin
         const Vec2 old(p.tangentImpulse[0], p.tangentImpulse[1]);
         const Real limit = m.friction * p.normalImpulse;
         Vec2 next;
+        Vec2 delta;
         if (settings.friction == FrictionModel::Coupled) {
-            next = old + omega * (solveDisc(p.tangent, old, vt, limit) - old);
+            solveRelaxedDisc(p.tangent, old, vt, limit, omega, next, delta);
         } else {
             const std::array<Real, 2>& mass = c.points[i].tangentMass;
             next = (old - omega * Vec2(mass[0] * vt(0), mass[1] * vt(1)))
                        .cwiseMax(-limit)
                        .cwiseMin(limit);
+            delta = next - old;
         }
-        const Vec2 delta = next - old;
         const Vec3 linear = delta.x() * m.tangents[0] + delta.y() * m.tangents[1];
         a.linearVelocity -= a.inverseMass * linear;
         a.angularVelocity -= delta.x() * p.tangentImpulseA[0] + delta.y() * p.tangentImpulseA[1];

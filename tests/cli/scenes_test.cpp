@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -21,6 +22,12 @@ struct Sample {
     double t = 0, x = 0, y = 0, z = 0, vx = 0, vy = 0, vz = 0;
 };
 
+// A cell as a double. Not std::stod: it throws out_of_range on a subnormal, and a resting node's
+// velocity decays geometrically under drag until it prints as one (9.88e-324).
+double number(const std::string& cell) {
+    return std::strtod(cell.c_str(), nullptr);
+}
+
 /// The CSV as one time series per body name.
 std::map<std::string, std::vector<Sample>> readTrajectories(const fs::path& file) {
     std::istringstream csv(slurp(file));
@@ -34,9 +41,9 @@ std::map<std::string, std::vector<Sample>> readTrajectories(const fs::path& file
             cells.push_back(cell);
         if (cells.size() != 16)
             continue;
-        out[cells[2]].push_back({std::stod(cells[0]), std::stod(cells[3]), std::stod(cells[4]),
-                                 std::stod(cells[5]), std::stod(cells[10]), std::stod(cells[11]),
-                                 std::stod(cells[12])});
+        out[cells[2]].push_back({number(cells[0]), number(cells[3]), number(cells[4]),
+                                 number(cells[5]), number(cells[10]), number(cells[11]),
+                                 number(cells[12])});
     }
     return out;
 }

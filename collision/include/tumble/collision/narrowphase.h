@@ -27,4 +27,19 @@ void collide(const Shape& a, const Transform& poseA, const Shape& b, const Trans
 void collide(const Shape& a, const Transform& poseA, const Shape& b, const Transform& poseB,
              Real margin, ManifoldSet& out);
 
+/// Where the segment from a to b (world) passes through a triangle of a mesh `surface` at
+/// `pose` (a thread through a thin wall between nodes on its two sides): the contact, for a
+/// capsule of `radius` on that segment, that lifts it out over the nearest border edge
+/// (mesh_crossing.cpp): normal (unit, from the surface to the segment) normal to both the
+/// segment and the edge and pointing past the edge, the point on the edge, separation (m,
+/// negative: how far along the normal the capsule must move to clear the edge). False when the
+/// segment passes through no triangle, the mesh has no border edge near or `surface` is no mesh.
+struct SheetCrossing {
+    Vec3 normal = Vec3::UnitZ();
+    Vec3 point = Vec3::Zero();
+    Real separation = 0;
+};
+bool crossingOverBorder(const Shape& surface, const Transform& pose, const Vec3& a, const Vec3& b,
+                        Real radius, SheetCrossing& out);
+
 }  // namespace tumble

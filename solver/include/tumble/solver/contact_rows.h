@@ -107,8 +107,9 @@ private:
     // every bundle when measuring the change) have one, so a pile's bundles stream no 1 KB of
     // zeros.
     struct Block {
-        Lane block[16];   // the normal block K, by rows
-        Lane factor[16];  // L of the cached active set by rows, identity on the other rows
+        Lane block[16];           // the normal block K, by rows
+        Lane factor[16];          // L of the cached active set by rows, identity on the other rows
+        Lane inverseDiagonal[4];  // 1 / L_ii (NormalFactor::inverseDiagonal), 1 off the set
     };
     struct Bundle {
         static constexpr std::uint32_t kNoBlock = ~0u;

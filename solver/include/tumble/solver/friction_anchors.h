@@ -32,6 +32,12 @@ struct AnchorLengths {
     /// A manifold's anchors are seated afresh once its points moved this far from them (m)
     /// along the surfaces: a sliding manifold that never reaches its limit. 2 slop.
     Real reach = 0;
+    /// The most the pass moves a point towards its anchors in one step (m): slop / 3, 1.7 mm
+    /// (0.1 m/s at 60 Hz). Unbounded, it removed a landing body's drift of a few mm in one step
+    /// with a pull as strong as the impact's disc allows, which turned the body at up to 22 rad/s
+    /// of pseudo-velocity: a hull's corner 6.7 cm into a height field (TerrainTunnel), a sphere
+    /// under a net rocked for good (StickingFriction.APileUnderANet...).
+    Real catchUp = 0;
     /// From the scene's slop, or where that is 0 its contact margin, or where both are 0 the
     /// default slop (a deadband of 0 would send a pile at rest through the pass every step).
     static AnchorLengths of(Real slop, Real contactMargin);
@@ -49,10 +55,10 @@ class FrictionAnchorPass {
 public:
     /// `drifts`: 4 per constraint, each point's anchor drift (m, world, tangent plane, B's anchor
     /// - A's; AnchorTable). `pseudo`: one per body, updated.
-    /// `deadband`: AnchorLengths::deadband.
+    /// `lengths`: the deadband and the catch-up (AnchorLengths).
     void run(std::span<const SolverBody> bodies, std::span<const ContactConstraint> constraints,
              std::span<const Vec3> drifts, std::vector<PseudoVelocity>& pseudo, Real inverseH,
-             Real deadband);
+             const AnchorLengths& lengths);
 
 private:
     std::vector<SolverBody> bodies_;     ///< the bodies at their pseudo-velocities

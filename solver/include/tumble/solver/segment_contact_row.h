@@ -51,6 +51,8 @@ struct SegmentContactRow {
     Real normalMass = 0;                ///< 1 / K along the normal (kg)
     std::array<Real, 2> tangentMass{};  ///< 1 / K along each tangent (kg)
     Real positionImpulse = 0;           ///< solveSegmentPositions' accumulated push (N s)
+    /// S cannot move and is at rest (a static shape's): the velocity sweeps leave it out.
+    bool fixedS = false;
 };
 
 /// Tangent bases and effective masses of every row, then the warm start (each row's cached
