@@ -56,25 +56,44 @@ void SolveStage::softSubsteps(BodyStore& bodies, std::span<ContactConstraint> co
     moved_.assign(solverBodies_.size(), BodyDisplacement{});
     for (int k = 0; k < n; ++k) {
         storeVelocities(bodies);
+        // The bounces' impacts need the normal acceleration: the first substep's change.
+        const bool impacts = k == 0 && solver.softBounces();
+        if (impacts)
+            softChange_.assign(solverBodies_.size(), SolverBody{});
+        for (std::size_t b = 0; impacts && b < bodies.awake.size(); ++b) {
+            const BodyMotion& m = bodies.motion[bodies.awake[b]];
+            softChange_[1 + b].linearVelocity = -m.linearVelocity;
+            softChange_[1 + b].angularVelocity = -m.angularVelocity;
+        }
         integrateVelocities(bodies, sub);
         for (std::size_t b = 0; b < bodies.awake.size(); ++b) {
             const BodyMotion& m = bodies.motion[bodies.awake[b]];
             solverBodies_[1 + b].linearVelocity = m.linearVelocity;
             solverBodies_[1 + b].angularVelocity = m.angularVelocity;
+            if (impacts) {
+                softChange_[1 + b].linearVelocity += m.linearVelocity;
+                softChange_[1 + b].angularVelocity += m.angularVelocity;
+            }
         }
+        if (impacts)
+            solver.softImpacts(softChange_, constraints, context.h, sub.h,
+                               settings.restitutionThreshold);
         if (k > 0)
             solver.softWarmStart(solverBodies_, constraints);
-        solver.softTargets(constraints, moved_, soft, sub.inverseH);
+        solver.softTargets(constraints, moved_, soft, sub.inverseH, false);
         solver.softSweep(solverBodies_, constraints, settings, sub.inverseH, &soft);
         storeVelocities(bodies);
         integratePositions(bodies, {}, sub);
         measureDisplacements(bodies, sub.h);
-        solver.softTargets(constraints, moved_, soft, sub.inverseH);
+        solver.softTargets(constraints, moved_, soft, sub.inverseH, k == n - 1);
         solver.softSweep(solverBodies_, constraints, settings, sub.inverseH, nullptr);
         solver.endSoftSubstep(constraints);
     }
-    solver.endSoft(solverBodies_, constraints);
+    softLift_.resize(solverBodies_.size());
+    solver.endSoft(solverBodies_, constraints, moved_, softLift_);
     storeVelocities(bodies);
+    if (solver.softBounces())
+        displaceBodies(bodies, std::span<const PseudoVelocity>(softLift_).subspan(1), 1);
 }
 
 void SolveStage::measureDisplacements(const BodyStore& bodies, Real h) {

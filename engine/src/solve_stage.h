@@ -125,10 +125,12 @@ private:
     std::vector<Vec3> anchorDrifts_;  ///< 4 per constraint
     std::vector<char> sprung_;        ///< by solver body: a spring ends on it
     // The soft step.
-    bool softRun_ = false;                 ///< the last solve was a soft step
-    SolverProfile softProfile_;            ///< its stages' times
-    std::vector<Vec3> softStart_;          ///< awake bodies' centres at the step's start
-    std::vector<BodyDisplacement> moved_;  ///< by solver body: since the step's start
+    bool softRun_ = false;                  ///< the last solve was a soft step
+    SolverProfile softProfile_;             ///< its stages' times
+    std::vector<Vec3> softStart_;           ///< awake bodies' centres at the step's start
+    std::vector<BodyDisplacement> moved_;   ///< by solver body: since the step's start
+    std::vector<SolverBody> softChange_;    ///< by solver body: the first substep's velocity change
+    std::vector<PseudoVelocity> softLift_;  ///< by solver body: the bounces' displacements (m)
 };
 
 /// Solver body 0 is every static body; awake body k is solver body 1 + k.

@@ -76,10 +76,7 @@ Mat3 pointMassMatrix(const SolverBody& a, const SolverBody& b, const ContactCons
            skewB * b.inverseInertia * skewB;
 }
 
-struct Impact {
-    Real time = 0;   // within the step (s)
-    Real speed = 0;  // normal velocity then (m/s), of the parabola below
-};
+}  // namespace
 
 // When and how fast a point at separation s hits, under a constant normal acceleration a, given
 // its normal velocity vEnd at the end of the step before contact (so vEnd - a h at its start).
@@ -111,8 +108,6 @@ Impact impactWithinStep(Real s, Real vEnd, Real a, Real h) {
     // Stopped although it would not have arrived (pushed by other contacts): the linear guess.
     return {vEnd < 0 ? std::clamp(-s / vEnd, Real(0), h) : h, vEnd};
 }
-
-}  // namespace
 
 // The coupled friction update of one point, solved exactly: the impulse lambda in the disc
 // |lambda| <= r that minimises  1/2 (lambda - old)' K (lambda - old) + vt' (lambda - old),

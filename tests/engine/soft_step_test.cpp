@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "testkit/scenes.h"
 #include "tumble/world.h"
@@ -111,6 +113,41 @@ TEST(SoftStep, TwentyCubeStackStandsTenSeconds) {
         EXPECT_LT(offset.head<2>().norm(), 0.1) << "cube " << k;
     }
     EXPECT_LT(start.back().z() - world.position(cubes.back()).z(), sink);
+}
+
+// Restitution at the impact on the substeps' parabola (ContactSolver::softImpacts): a ball (r
+// 0.1 m, e 0.8) dropped from a centre height of 1 m rises to r + (H - r) e^2k after its k-th
+// bounce; the bounce case's claim at h = 1/240: the first five within 2 %, none 0.5 % above.
+// Box2D's bounce on the approach speed of the step's start, applied at its end, came 1.6 % low
+// on the first apex and 7.4 % on the fifth.
+TEST(SoftStep, BouncesReachNewtonsApexes) {
+    constexpr Real kRadius = 0.1;
+    constexpr Real kDrop = 1;
+    constexpr Real kRestitution = 0.8;
+    WorldDef def = testkit::stackWorld(1.0 / 240);
+    def.solver.softSubsteps = kSubsteps;
+    World world(def);
+    const Material surface = testkit::material(0.5, kRestitution, 1000);
+    testkit::addGround(world, surface);
+    const BodyId ball = world.createBody(BodyDef{.position = Vec3(0, 0, kDrop)});
+    world.createShape(ball, ShapeDef{.geometry = Sphere{kRadius}, .material = surface});
+    std::vector<Real> apexes;
+    Real previous = -1;  // vertical velocity before the step
+    for (int i = 0; i < 240 * 6 && apexes.size() < 5; ++i) {
+        const Real z = world.position(ball).z();
+        ASSERT_TRUE(world.step().ok());
+        const Real v = world.linearVelocity(ball).z();
+        if (previous > 0 && v <= 0)
+            apexes.push_back(z);  // within g h^2 of the apex
+        previous = v;
+    }
+    ASSERT_EQ(apexes.size(), 5U);
+    Real expected = kDrop - kRadius;
+    for (std::size_t k = 0; k < apexes.size(); ++k) {
+        expected *= kRestitution * kRestitution;
+        EXPECT_NEAR(apexes[k], kRadius + expected, 0.02 * (kRadius + expected)) << "apex " << k + 1;
+        EXPECT_LT(apexes[k], 1.005 * (kRadius + expected)) << "apex " << k + 1;
+    }
 }
 
 TEST(SoftStep, RefusesBadSettings) {

@@ -69,9 +69,9 @@ struct SolverSettings {
     bool colouredContacts = true;
     /// Box2D v3's soft step (docs/ARCHITECTURE.md, "The soft step"), opt-in: > 0 collides once
     /// per step and runs this many substeps of one soft biased sweep, the positions, and one
-    /// rigid relax sweep, with gravity at h / softSubsteps; iterations, relaxIterations,
-    /// tolerance, the friction anchors and the coloured rows are then unused. 0 (default): the
-    /// sweeps above. A world with springs or joints keeps the sweeps. >= 0.
+    /// rigid relax sweep, with gravity at h / softSubsteps, on the rows colouredContacts picks;
+    /// iterations, relaxIterations, tolerance and the friction anchors are then unused. 0
+    /// (default): the sweeps above. A world with springs or joints keeps the sweeps. >= 0.
     int softSubsteps = 0;
     /// Soft step: natural frequency of a contact between two moving bodies (Hz), > 0; twice it
     /// against a static body; at most a quarter of the substep rate.

@@ -216,10 +216,11 @@ public:
     void beginSoft(std::span<ContactConstraint> constraints);
     /// The separations where the bodies now stand (`moved`, by solver body), as the rows'
     /// targets under `soft`: the speculative gap, or the capped push-out encoded as a depth
-    /// that the biased sweep (bias = h) turns into it.
+    /// that the biased sweep (bias = h) turns into it. `last`: the step's last relax sweep, where
+    /// a point that may bounce early in the next step is not slowed (soft_contacts.cpp).
     void softTargets(std::span<ContactConstraint> constraints,
                      std::span<const BodyDisplacement> moved, const SoftContact& soft,
-                     Real inverseH);
+                     Real inverseH, bool last);
     /// A substep's warm start: the accumulated impulses applied again.
     void softWarmStart(std::span<SolverBody> bodies,
                        std::span<const ContactConstraint> constraints);
@@ -228,8 +229,19 @@ public:
                    const SolverSettings& settings, Real inverseH, const SoftContact* soft);
     /// After a substep: its impulses into the constraints and added to the sums.
     void endSoftSubstep(std::span<ContactConstraint> constraints);
+    /// Whether some point may bounce this step (beginSoft: restitution > 0).
+    bool softBounces() const { return !softBounces_.empty(); }
+    /// Which points bounce, and their impacts on the parabola of the substeps' flight, from the
+    /// bodies' velocity changes over the first substep of hs (`change`, by solver body: the
+    /// normal acceleration); h the step, `threshold` SolverSettings::restitutionThreshold.
+    void softImpacts(std::span<const SolverBody> change,
+                     std::span<const ContactConstraint> constraints, Real h, Real hs,
+                     Real threshold);
     /// After the last substep: restitution once, then the step's sums into the constraints.
-    void endSoft(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints);
+    /// A point that bounced is lifted where its rebound would be at the step's end: `lift` (by
+    /// solver body, zeroed here) gets the displacements, which the caller applies.
+    void endSoft(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
+                 std::span<const BodyDisplacement> moved, std::span<PseudoVelocity> lift);
 
 private:
     /// One constraint's impulses summed over the substeps (N s).
@@ -254,6 +266,7 @@ private:
         std::uint32_t constraint = 0;
         int point = 0;
         Real target = 0;  ///< v_n after the bounce (m/s)
+        Real lift = 0;    ///< the separation the rebound reaches by the step's end (m)
     };
 
     NormalIslands islands_;                  ///< normal rows of small, ill-conditioned groups,
@@ -269,6 +282,7 @@ private:
     std::vector<std::uint32_t> softFirst_;   ///< soft step: each constraint's first SoftPoint
     std::vector<SoftSum> softSums_;          ///< soft step: per constraint
     std::vector<SoftBounce> softBounces_;    ///< soft step: the points that bounce
+    std::vector<std::uint32_t> softLate_;    ///< soft step: restitution > 0, arriving later
 };
 
 }  // namespace tumble
