@@ -11,6 +11,7 @@
 
 #include "case.h"
 #include "report.h"
+#include "testkit/scenes.h"
 
 namespace {
 
@@ -68,7 +69,17 @@ int main(int argc, char** argv) {
                    "Also write report.md, each table as CSV and the study's figures as PNG to "
                    "this directory (default cases: oscillator bounce string string-cost "
                    "stack-cost)");
+    int softStep = 0;
+    app.add_option("--soft-step", softStep,
+                   "Run the contact cases' worlds with the soft step of this many substeps "
+                   "(SolverSettings::softSubsteps; worlds made by the scene kit and bounce)")
+        ->check(CLI::PositiveNumber);
+    double softHertz = tumble::SolverSettings{}.contactHertz;
+    app.add_option("--soft-hertz", softHertz, "With --soft-step: SolverSettings::contactHertz")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
     CLI11_PARSE(app, argc, argv);
+    tumble::testkit::forceSoftStep(softStep, softHertz);
 
     const std::vector<ValidationCase> cases = tumble::validation::allCases();
     if (list) {

@@ -251,6 +251,17 @@ int main(int argc, char** argv) {
     app.add_option("--tumble-relax", tumbleRelax,
                    "Tumble's relax sweeps (default: as many as the peers' iterations)")
         ->check(CLI::NonNegativeNumber);
+    int tumbleSoft = 0;
+    app.add_option("--tumble-soft", tumbleSoft,
+                   "also run Tumble with the soft step of this many substeps "
+                   "(SolverSettings::softSubsteps) as engine tumble-soft, beside its default")
+        ->check(CLI::PositiveNumber);
+    double tumbleSoftHertz = SolverSettings{}.contactHertz;
+    app.add_option("--tumble-soft-hertz", tumbleSoftHertz,
+                   "tumble-soft's SolverSettings::contactHertz (capped at a quarter of the "
+                   "substep rate)")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
     std::vector<std::string> engines;
     app.add_option(
         "--engine", engines,
@@ -297,7 +308,12 @@ int main(int argc, char** argv) {
     const SceneSettings settings{.colouredContacts = coloured,
                                  .frictionAnchors = anchors,
                                  .tumbleIterations = tumbleIterations,
-                                 .tumbleRelaxIterations = tumbleRelax};
+                                 .tumbleRelaxIterations = tumbleRelax,
+                                 .tumbleSoftSubsteps = tumbleSoft,
+                                 .tumbleSoftHertz = tumbleSoftHertz};
+    std::vector<Peer> engineList = peers();
+    if (tumbleSoft > 0)
+        engineList.insert(engineList.begin() + 1, Peer{"tumble-soft", &createTumbleSoft});
     std::ostringstream header;
     header << "h = 1/" << number(1 / settings.timeStep, "%.0f") << " s, " << settings.iterations
            << " iterations (Tumble " << budget(settings)
@@ -319,8 +335,8 @@ int main(int argc, char** argv) {
         // Without Tumble in the run the ratios are NaN, printed "-".
         double tumbleMedian = std::numeric_limits<double>::quiet_NaN();
         double tumbleCpu = tumbleMedian;
-        for (const Peer& peer : peers()) {
-            if (!engineChosen(engines, peer.name))
+        for (const Peer& peer : engineList) {
+            if (!engineChosen(engines, peer.name) && peer.name != "tumble-soft")
                 continue;
             Row row = run(peer, scene, settings, seconds, runs);
             if (peer.name == "tumble" && row.skipped.empty()) {

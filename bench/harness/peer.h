@@ -49,6 +49,9 @@ struct SceneSettings {
     /// negative count runs `iterations` of each, as Bullet runs its split-impulse pass.
     int tumbleIterations = -1;
     int tumbleRelaxIterations = -1;
+    /// The "tumble-soft" engine only (createTumbleSoft): SolverSettings::softSubsteps.
+    int tumbleSoftSubsteps = 4;
+    Real tumbleSoftHertz = SolverSettings{}.contactHertz;  ///< SolverSettings::contactHertz
 };
 
 /// The pile's shapes. No cylinders: Debian's ODE is built without libccd and has no
@@ -145,6 +148,8 @@ struct Peer {
 };
 
 std::unique_ptr<PeerWorld> createTumble(const SceneSettings& settings);
+/// Tumble with the soft step (settings.tumbleSoftSubsteps), engine "tumble-soft".
+std::unique_ptr<PeerWorld> createTumbleSoft(const SceneSettings& settings);
 /// The World behind one of createTumble's worlds (microbenchmarks read its profile); null for
 /// another engine's.
 const World* tumbleWorld(const PeerWorld& world);

@@ -12,8 +12,8 @@ namespace {
 
 class TumbleWorld final : public PeerWorld {
 public:
-    explicit TumbleWorld(const SceneSettings& s)
-        : world_(worldDef(s)),
+    explicit TumbleWorld(const SceneSettings& s, bool soft = false)
+        : world_(worldDef(s, soft)),
           friction_(s.friction),
           restitution_(s.restitution),
           cubeMass_(s.boxMass) {}
@@ -72,8 +72,12 @@ public:
     Real deepestPenetration() const override { return world_.solverStats().deepestPenetration; }
 
 private:
-    static WorldDef worldDef(const SceneSettings& s) {
+    static WorldDef worldDef(const SceneSettings& s, bool soft) {
         WorldDef def{.gravity = s.gravity, .timeStep = s.timeStep};
+        if (soft) {
+            def.solver.softSubsteps = s.tumbleSoftSubsteps;
+            def.solver.contactHertz = s.tumbleSoftHertz;
+        }
         def.solver.iterations = s.tumbleIterations >= 0 ? s.tumbleIterations : s.iterations;
         def.solver.relaxIterations =
             s.tumbleRelaxIterations >= 0 ? s.tumbleRelaxIterations : s.iterations;
@@ -111,6 +115,10 @@ private:
 
 std::unique_ptr<PeerWorld> createTumble(const SceneSettings& settings) {
     return std::make_unique<TumbleWorld>(settings);
+}
+
+std::unique_ptr<PeerWorld> createTumbleSoft(const SceneSettings& settings) {
+    return std::make_unique<TumbleWorld>(settings, true);
 }
 
 const World* tumbleWorld(const PeerWorld& world) {

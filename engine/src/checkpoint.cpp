@@ -8,6 +8,7 @@
 
 #include "checkpoint_io.h"
 #include "checkpoint_surfaces.h"
+#include "tumble/solver/contact_solver.h"  // checkSolverSettings
 #include "world_impl.h"
 
 namespace tumble {
@@ -43,7 +44,8 @@ void field(Ar& a, SolverSettings& x) {
     fields(a, x.iterations, x.relaxIterations, x.tolerance, x.relaxation, x.friction,
            x.stabilisation, x.baumgarte, x.splitImpulseFactor, x.slop, x.restitutionThreshold,
            x.warmStart, x.springSolve, x.projectSprings, x.jointGeometricStiffness, x.jointSolve,
-           x.frictionAnchors, x.colouredContacts);
+           x.frictionAnchors, x.colouredContacts, x.softSubsteps, x.contactHertz,
+           x.contactDampingRatio, x.maxPushOutSpeed);
 }
 template <typename Ar>
 void field(Ar& a, WorldDef& x) {
@@ -558,6 +560,11 @@ struct CheckpointAccess {
             r.corrupt("time step ", w.settings.timeStep);
         if (w.settings.substeps < 1)
             r.corrupt("substeps ", w.settings.substeps);
+        try {
+            checkSolverSettings(w.settings.solver);  // a soft step of -1 substeps, a NaN hertz
+        } catch (const InvalidArgument& e) {
+            r.corrupt(e.what());
+        }
     }
 
     static const World::Impl& impl(const World& world) { return *world.impl_; }

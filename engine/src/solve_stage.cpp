@@ -94,9 +94,8 @@ std::span<ContactConstraint> SolveStage::buildConstraints(const BodyStore& bodie
     return std::span<ContactConstraint>(constraints_).first(count);
 }
 
-SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, ContactManager& contacts,
-                            SpringStore& springs, JointStore& joints, const StepContext& context,
-                            const SolverSettings& settings) {
+// The awake bodies' velocities and the masses the rows see, for a step of length h.
+void SolveStage::loadSolverBodies(const BodyStore& bodies, Real h) {
     const std::size_t awakeCount = bodies.awake.size();
     solverBodies_.resize(1 + awakeCount);
     solverBodies_[0] = SolverBody{};
@@ -112,7 +111,7 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
         // would eat the part of the weight a spring or joint carries (rest 1/(1 + h c) short).
         // So the rows see the damped mass M (1 + h c). No damping: bitwise the plain mass.
         const BodyInfo& info = bodies.info[i];
-        s.inverseMass = inertia.inverseMass / (1 + context.h * info.linearDamping);
+        s.inverseMass = inertia.inverseMass / (1 + h * info.linearDamping);
         // A translation-only body (a lumped node): no rotation to apply to its zero inverse
         // inertia (integrateVelocity says why the bits hold).
         if (info.fixedRotation) {
@@ -121,8 +120,45 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
         }
         const Mat3 rotation = m.orientation.toRotationMatrix();
         s.inverseInertia = rotation * inertia.inverseInertiaLocal * rotation.transpose() /
-                           (1 + context.h * info.angularDamping);
+                           (1 + h * info.angularDamping);
     }
+}
+
+// The solved velocities back to the awake dynamic bodies.
+void SolveStage::storeVelocities(BodyStore& bodies) const {
+    for (std::size_t k = 0; k < bodies.awake.size(); ++k) {
+        const std::uint32_t i = bodies.awake[k];
+        if (bodies.info[i].type != BodyType::Dynamic)
+            continue;
+        bodies.motion[i].linearVelocity = solverBodies_[1 + k].linearVelocity;
+        bodies.motion[i].angularVelocity = solverBodies_[1 + k].angularVelocity;
+    }
+}
+
+// The constraints' impulses back into the contact cache (warm start, reports).
+void SolveStage::storeImpulses(ContactManager& contacts, std::span<ContactConstraint> constraints,
+                               bool anchored) {
+    for (std::size_t j = 0; j < constraints.size(); ++j) {
+        ContactConstraint& c = constraints[j];
+        if (anchored) {  // equilibrated before release reads the manifold's friction share
+            equilibrateFriction(c);
+            anchors_.release(constraintContact_[j], c);
+        }
+        Contact& contact = contacts.contact(constraintContact_[j]);
+        contact.angularImpulse = c.angularImpulse;
+        for (int i = 0; i < c.pointCount; ++i) {
+            contact.normalImpulse[i] = c.points[i].normalImpulse;
+            contact.tangentImpulse[i] = c.points[i].tangentImpulse[0] * c.tangents[0] +
+                                        c.points[i].tangentImpulse[1] * c.tangents[1];
+        }
+    }
+}
+
+SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, ContactManager& contacts,
+                            SpringStore& springs, JointStore& joints, const StepContext& context,
+                            const SolverSettings& settings) {
+    softRun_ = false;
+    loadSolverBodies(bodies, context.h);
 
     const std::span<ContactConstraint> constraints =
         buildConstraints(bodies, shapes, contacts, context);
@@ -162,27 +198,8 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
             row.discreteGradient ? Vec3(row.impulse * row.direction + row.turn) : Vec3::Zero()};
     }
 
-    for (std::size_t j = 0; j < constraints.size(); ++j) {
-        ContactConstraint& c = constraints[j];
-        if (anchored) {  // equilibrated before release reads the manifold's friction share
-            equilibrateFriction(c);
-            anchors_.release(constraintContact_[j], c);
-        }
-        Contact& contact = contacts.contact(constraintContact_[j]);
-        contact.angularImpulse = c.angularImpulse;
-        for (int i = 0; i < c.pointCount; ++i) {
-            contact.normalImpulse[i] = c.points[i].normalImpulse;
-            contact.tangentImpulse[i] = c.points[i].tangentImpulse[0] * c.tangents[0] +
-                                        c.points[i].tangentImpulse[1] * c.tangents[1];
-        }
-    }
-    for (std::size_t k = 0; k < awakeCount; ++k) {
-        const std::uint32_t i = bodies.awake[k];
-        if (bodies.info[i].type != BodyType::Dynamic)
-            continue;
-        bodies.motion[i].linearVelocity = solverBodies_[1 + k].linearVelocity;
-        bodies.motion[i].angularVelocity = solverBodies_[1 + k].angularVelocity;
-    }
+    storeImpulses(contacts, constraints, anchored);
+    storeVelocities(bodies);
     return stats;
 }
 

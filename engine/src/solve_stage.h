@@ -38,8 +38,18 @@ public:
     SolverStats run(BodyStore& bodies, const ShapeStore& shapes, ContactManager& contacts,
                     SpringStore& springs, JointStore& joints, const StepContext& context,
                     const SolverSettings& settings);
+    /// The soft step instead of run() (SolverSettings::softSubsteps > 0; soft_step.cpp): the
+    /// contacts of the one collision solved over n substeps of h / n, each integrating the
+    /// velocities (gravity, applied forces), one soft biased sweep, the positions, one rigid
+    /// relax sweep; restitution once at the end. Moves the bodies itself (no pseudo-velocities,
+    /// nothing for integratePositions). The contacts' impulses are the step's sums. No springs
+    /// or joints: the world keeps run() for them.
+    SolverStats runSoft(BodyStore& bodies, const ShapeStore& shapes, ContactManager& contacts,
+                        const StepContext& context, const SolverSettings& settings);
     /// Time of each of the solver's stages in the last run.
-    const SolverProfile& solverProfile() const { return solver_.profile(); }
+    const SolverProfile& solverProfile() const {
+        return softRun_ ? softProfile_ : solver_.profile();
+    }
     /// Dense indices of the joints that broke in the last run.
     std::span<const std::uint32_t> brokenJoints() const { return brokenJoints_; }
 
@@ -62,6 +72,16 @@ private:
     std::span<ContactConstraint> buildConstraints(const BodyStore& bodies, const ShapeStore& shapes,
                                                   const ContactManager& contacts,
                                                   const StepContext& context);
+    void loadSolverBodies(const BodyStore& bodies, Real h);
+    void storeVelocities(BodyStore& bodies) const;
+    void storeImpulses(ContactManager& contacts, std::span<ContactConstraint> constraints,
+                       bool anchored);
+    /// The soft step's substeps on the prepared constraints (soft_step.cpp).
+    void softSubsteps(BodyStore& bodies, std::span<ContactConstraint> constraints,
+                      const StepContext& context, const SolverSettings& settings);
+    /// Every awake body's displacement since the step began (into moved_), after a substep
+    /// of length h.
+    void measureDisplacements(const BodyStore& bodies, Real h);
     /// projectSprings()'s rows' geometry at the new positions and their errors; returns the
     /// largest (m).
     Real projectionErrors(const BodyStore& bodies, const SpringStore& springs,
@@ -104,6 +124,13 @@ private:
     FrictionAnchorPass anchorPass_;
     std::vector<Vec3> anchorDrifts_;  ///< 4 per constraint
     std::vector<char> sprung_;        ///< by solver body: a spring ends on it
+    // The soft step.
+    bool softRun_ = false;                  ///< the last solve was a soft step
+    SolverProfile softProfile_;             ///< its stages' times
+    std::vector<Vec3> softStart_;           ///< awake bodies' centres at the step's start
+    std::vector<BodyDisplacement> moved_;   ///< by solver body: since the step's start
+    std::vector<SolverBody> softChange_;    ///< by solver body: the first substep's velocity change
+    std::vector<PseudoVelocity> softLift_;  ///< by solver body: the bounces' displacements (m)
 };
 
 /// Solver body 0 is every static body; awake body k is solver body 1 + k.

@@ -339,26 +339,41 @@ StepStatus World::step() {
 }
 
 StepStatus World::Impl::substep(const StepContext& context) {
+    // The soft step integrates velocities and positions in its own substeps, with the forces of
+    // the step's start; springs and joints keep the sweeps (SolverSettings::softSubsteps).
+    const bool soft =
+        settings.solver.softSubsteps > 0 && springs.count() == 0 && joints.count() == 0;
     profile.forces += timed([&] {
         controllers.apply(joints, bodies, context.h);
         forceElements.apply(springs, drag, bodies);
-        integrateVelocities(bodies, context);
-        forceElements.restore(bodies);
+        if (!soft) {
+            integrateVelocities(bodies, context);
+            forceElements.restore(bodies);
+        }
     });
     profile.broadphase += timed([&] { contacts.updatePairs(); });
     profile.narrowphase += timed([&] { contacts.updateContacts(shapes, bodies, context); });
     profile.islands += timed([&] {
-        islands.wakeTouched(bodies, contacts, context);
+        // A body woken now gets its forces in the soft step's substeps, not here.
+        const StepContext noCatchUp{0, context.inverseH, context.gravity};
+        islands.wakeTouched(bodies, contacts, soft ? noCatchUp : context);
         // A body woken by a touch wakes what it is jointed to before the solve.
         if (joints.count() > 0)
             wakeJointLinked(joints, bodies, contacts, islands, &context);
     });
     profile.solve += timed([&] {
+        if (soft) {
+            solverStats = solve.runSoft(bodies, shapes, contacts, context, settings.solver);
+            forceElements.restore(bodies);
+            return;
+        }
         solverStats =
             solve.run(bodies, shapes, contacts, springs, joints, context, settings.solver);
     });
     profile.solveStages += solve.solverProfile();
     profile.integrate += timed([&] {
+        if (soft)
+            return;  // the soft step moved the bodies
         integratePositions(bodies, solve.pseudoVelocities(), context);
         solve.projectSprings(bodies, springs, context, settings.solver);
     });

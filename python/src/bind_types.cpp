@@ -262,7 +262,12 @@ void bindSettings(py::module_& m) {
         .field("joint_geometric_stiffness", &SolverSettings::jointGeometricStiffness, "")
         .field("joint_solve", &SolverSettings::jointSolve, "SpringSolve")
         .field("friction_anchors", &SolverSettings::frictionAnchors,
-               "sticking contacts held in place (split impulse only)");
+               "sticking contacts held in place (split impulse only)")
+        .field("soft_substeps", &SolverSettings::softSubsteps,
+               ">= 0; > 0: the soft step with this many substeps")
+        .field("contact_hertz", &SolverSettings::contactHertz, "soft step (Hz), > 0")
+        .field("contact_damping_ratio", &SolverSettings::contactDampingRatio, "soft step, >= 0")
+        .field("max_push_out_speed", &SolverSettings::maxPushOutSpeed, "soft step (m/s), > 0");
     Struct<WorldDef>(m, "WorldDef", "World settings.")
         .field("gravity", &WorldDef::gravity, "(m/s^2)")
         .field("time_step", &WorldDef::timeStep, "h (s), > 0")

@@ -39,6 +39,10 @@ SolverSettings parseSolver(JsonObject o) {
     s.restitutionThreshold = o.positive("restitutionThreshold", s.restitutionThreshold, true);
     s.warmStart = o.boolean("warmStart", s.warmStart);
     s.frictionAnchors = o.boolean("frictionAnchors", s.frictionAnchors);
+    s.softSubsteps = o.integer("softSubsteps", s.softSubsteps, 0, kMaxSubsteps);
+    s.contactHertz = o.number("contactHertz", s.contactHertz);
+    s.contactDampingRatio = o.number("contactDampingRatio", s.contactDampingRatio);
+    s.maxPushOutSpeed = o.number("maxPushOutSpeed", s.maxPushOutSpeed);
     o.finish();
     try {
         checkSolverSettings(s);

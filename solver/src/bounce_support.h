@@ -21,6 +21,16 @@
 
 namespace tumble {
 
+/// When and how fast a point hits within a step (impactWithinStep).
+struct Impact {
+    Real time = 0;   ///< within the step (s)
+    Real speed = 0;  ///< normal velocity then (m/s), of the parabola of the point's motion
+};
+
+/// The impact of a point at separation s (m) under a constant normal acceleration a, given its
+/// normal velocity vEnd at the end of a step of h before contact (contact_solver.cpp).
+Impact impactWithinStep(Real s, Real vEnd, Real a, Real h);
+
 /// For every constraint with restitution > 0, sets its points' supportSpeed to the normal velocity
 /// change the warm-start impulses of the other constraints give (m/s) and adds that / h to their
 /// normalAcceleration (m/s^2); zero elsewhere. Called with warm starting on and some restitution

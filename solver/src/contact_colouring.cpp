@@ -77,6 +77,7 @@ bool ContactRows::build(std::span<const SolverBody> bodies,
     if (!enoughPoints(points, constraints.size()))
         return false;
     colour(bodies, constraints);
+    softTargets_ = false;
     // A bundle sweeps as many point slots as its manifolds have points. Where the colours leave
     // the lanes or the slots mostly empty (a lone column), the scalar sweep's compact rows give
     // the same bits for less work.
@@ -193,6 +194,34 @@ void ContactRows::fill(Bundle& bundle, int lane, const ContactConstraint& c, std
             base = p.reboundSpeed;
         setLane(q.targetBase, lane, base);
         setLane(q.correction, lane, p.bounces ? p.bounceCorrection * inverseH : 0);
+    }
+}
+
+// normalTarget's split (fill) at the substep's separations: a speculative gap to close at
+// inverseH, or the depth the biased sweep pushes out.
+void ContactRows::softTargets(std::span<const Real> separations,
+                              std::span<const std::uint32_t> firstPoint,
+                              const std::array<Real, 3>& scales, Real slop, Real inverseH) {
+    softScales_ = scales;
+    softTargets_ = true;
+    soft_.resize(points_.size());
+    for (const Bundle& bundle : bundles_) {
+        for (int i = 0; i < bundle.maxPoints; ++i)
+            soft_[bundle.firstPoint + i].scale = Lane{} + 1.0;
+        for (int lane = 0; lane < bundle.laneCount; ++lane) {
+            const std::uint32_t first = firstPoint[bundle.constraint[lane]];
+            const Real scale = scales[bundle.bodyA[lane] == 0 || bundle.bodyB[lane] == 0 ? 2 : 1];
+            for (int i = 0; i < bundle.points[lane]; ++i) {
+                const Real s = separations[first + i];
+                const bool speculative = s > 0;
+                Point& q = points_[bundle.firstPoint + i];
+                q.depth[lane] = speculative ? 0 : std::max<Real>(0, -s - slop);
+                q.targetBase[lane] = speculative ? -s * inverseH : 0;
+                q.correction[lane] = 0;
+                soft_[bundle.firstPoint + i].separation[lane] = s;
+                soft_[bundle.firstPoint + i].scale[lane] = speculative ? 1 : scale;
+            }
+        }
     }
 }
 

@@ -64,10 +64,13 @@ Real solveAngularFriction(SolverBody& a, SolverBody& b, ContactConstraint& c, Re
 /// its block K solved exactly (normal_block.h) with the cached factor, or point by point when it
 /// has one point or the block is degenerate. K is read only when n > 1 or when measuring. Raises
 /// largestChange to the velocity change when settings.tolerance > 0. Body: as normalSpeed's.
+/// `softScale` (the soft step's biased sweep, or null): the rigid answer of each point that
+/// touches (separation <= 0) is scaled by it, which makes the row a spring-damper
+/// (docs/ARCHITECTURE.md, the soft step); speculative points stay rigid.
 template <class Body, class Point>
 void solveNormals(Body& a, Body& b, const Vec3& normal, const Mat4* k, Point* points, int n,
                   NormalFactor& factor, const SolverSettings& settings, Real inverseH, Real bias,
-                  Real& largestChange) {
+                  Real& largestChange, const Real* softScale = nullptr) {
     const Real omega = settings.relaxation;
     Vec4 old = Vec4::Zero();
     Vec4 next = Vec4::Zero();
@@ -85,6 +88,10 @@ void solveNormals(Body& a, Body& b, const Vec3& normal, const Mat4* k, Point* po
                  solveNormalBlock(*k, n, c, exact, factor);
     }
     if (solved) {
+        if (softScale != nullptr) {
+            for (int i = 0; i < n; ++i)
+                exact(i) *= points[i].separation > 0 ? 1 : *softScale;
+        }
         next = (old + omega * (exact - old)).cwiseMax(0);
         for (int i = 0; i < n; ++i)
             applyNormal(a, b, normal, points[i], next(i) - old(i));
@@ -94,7 +101,13 @@ void solveNormals(Body& a, Body& b, const Vec3& normal, const Mat4* k, Point* po
             Point& p = points[i];
             const Real vn =
                 normalSpeed(a, b, normal, p) - normalTarget(p, bias, settings.slop, inverseH);
-            next(i) = std::max<Real>(0, old(i) - omega * p.normalMass * vn);
+            if (softScale == nullptr) {
+                next(i) = std::max<Real>(0, old(i) - omega * p.normalMass * vn);
+            } else {
+                const Real scale = p.separation > 0 ? 1 : *softScale;
+                const Real soft = scale * (old(i) - p.normalMass * vn);
+                next(i) = std::max<Real>(0, old(i) + omega * (soft - old(i)));
+            }
             applyNormal(a, b, normal, p, next(i) - old(i));
         }
     }
@@ -107,6 +120,21 @@ void solveNormals(Body& a, Body& b, const Vec3& normal, const Mat4* k, Point* po
         for (int i = 0; i < n; ++i)
             largestChange = std::max(largestChange, std::abs(change(i)));
     }
+}
+
+/// The soft step's warm start of one point (Point: ContactConstraintPoint or SweepPoint): its
+/// accumulated normal and friction impulses applied again.
+template <class Point>
+void warmStartPoint(SolverBody& a, SolverBody& b, const Vec3& normal,
+                    const std::array<Vec3, 2>& tangents, const Point& p) {
+    applyNormal(a, b, normal, p, p.normalImpulse);
+    const Vec3 linear = p.tangentImpulse[0] * tangents[0] + p.tangentImpulse[1] * tangents[1];
+    a.linearVelocity -= a.inverseMass * linear;
+    a.angularVelocity -=
+        p.tangentImpulse[0] * p.tangentImpulseA[0] + p.tangentImpulse[1] * p.tangentImpulseA[1];
+    b.linearVelocity += b.inverseMass * linear;
+    b.angularVelocity +=
+        p.tangentImpulse[0] * p.tangentImpulseB[0] + p.tangentImpulse[1] * p.tangentImpulseB[1];
 }
 
 /// solveNormals on a constraint's own points and block.

@@ -167,7 +167,7 @@ void ContactRows::scatter(const Bundle& bundle, const Lane (&v)[2][6]) {
 
 Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                         std::span<NormalFactor> factors, const SolverSettings& settings, Real bias,
-                        Real inverseH) {
+                        Real inverseH, bool soft) {
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         for (int k = 0; k < 3; ++k) {
             velocities_[i].v[k] = bodies[i].linearVelocity[k];
@@ -191,8 +191,8 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
             }
             gather(bundle, v);
         }
-        largestChange = std::max(
-            largestChange, solveNormals(bundle, constraints, factors, settings, bias, inverseH, v));
+        largestChange = std::max(largestChange, solveNormals(bundle, constraints, factors, settings,
+                                                             bias, inverseH, soft, v));
     }
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         for (int k = 0; k < 3; ++k) {
@@ -316,7 +316,7 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
                                                   std::span<ContactConstraint> constraints,
                                                   std::span<NormalFactor> factors,
                                                   const SolverSettings& settings, Real bias,
-                                                  Real inverseH, Lane (&v)[2][6]) {
+                                                  Real inverseH, bool soft, Lane (&v)[2][6]) {
     const Lane omega = splat(settings.relaxation);
     const Lane biasH = splat(bias * inverseH);
     Lane dv[3];
@@ -370,13 +370,24 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
         checkActiveSetLanes(k, bundle.hasPoint, c, active, x, ok);
         for (int lane = 0; lane < kWidth; ++lane)
             alone[lane] = alone[lane] || (fast[lane] != 0 && ok[lane] == 0);
+        if (soft) {
+            for (int i = 0; i < points; ++i)
+                x[i] = x[i] * soft_[bundle.firstPoint + i].scale;
+        }
         for (int i = 0; i < 4; ++i)
             next[i] = positivePart(old[i] + omega * (x[i] - old[i]));
         update |= fast & ok;
     }
     if (points > 0) {
         const Lane mass = points_[bundle.firstPoint].normalMass;
-        next[0] = select(single, positivePart(old[0] - (omega * mass) * gap[0]), next[0]);
+        Lane one;
+        if (soft) {
+            const Lane scaled = soft_[bundle.firstPoint].scale * (old[0] - mass * gap[0]);
+            one = positivePart(old[0] + omega * (scaled - old[0]));
+        } else {
+            one = positivePart(old[0] - (omega * mass) * gap[0]);
+        }
+        next[0] = select(single, one, next[0]);
     }
     Lane delta[4] = {};
     for (int i = 0; i < points; ++i) {
@@ -406,7 +417,7 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
             const std::uint32_t index = bundle.constraint[lane];
             largestChange = std::max(
                 largestChange, solveNormalsAlone(bundle, lane, constraints[index], factors[index],
-                                                 settings, bias, inverseH));
+                                                 settings, bias, inverseH, soft));
         }
     }
     return largestChange;
@@ -414,7 +425,7 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
 
 Real ContactRows::solveNormalsAlone(Bundle& bundle, int lane, ContactConstraint& c,
                                     NormalFactor& factor, const SolverSettings& settings, Real bias,
-                                    Real inverseH) {
+                                    Real inverseH, bool soft) {
     SolverBody a;
     SolverBody b;
     Velocity& va = velocities_[c.bodyA];
@@ -428,7 +439,21 @@ Real ContactRows::solveNormalsAlone(Bundle& bundle, int lane, ContactConstraint&
     for (int i = 0; i < c.pointCount; ++i)
         c.points[i].normalImpulse = points_[bundle.firstPoint + i].normalImpulse[lane];
     Real change = 0;
-    solveManifoldNormals(a, b, c, factor, settings, inverseH, bias, change);
+    if (softTargets_) {
+        // The constraint keeps the step's separations: the substep's ones only for this solve.
+        std::array<Real, 4> start{};
+        for (int i = 0; i < c.pointCount; ++i) {
+            start[i] = c.points[i].separation;
+            c.points[i].separation = soft_[bundle.firstPoint + i].separation[lane];
+        }
+        const Real* scale = soft ? &softScales_[c.bodyA == 0 || c.bodyB == 0 ? 2 : 1] : nullptr;
+        tumble::solveNormals(a, b, c.normal, &c.normalBlock, c.points.data(), c.pointCount, factor,
+                             settings, inverseH, bias, change, scale);
+        for (int i = 0; i < c.pointCount; ++i)
+            c.points[i].separation = start[i];
+    } else {
+        solveManifoldNormals(a, b, c, factor, settings, inverseH, bias, change);
+    }
     for (int k = 0; k < 3; ++k) {
         va.v[k] = a.linearVelocity[k];
         va.v[3 + k] = a.angularVelocity[k];

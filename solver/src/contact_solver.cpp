@@ -76,10 +76,7 @@ Mat3 pointMassMatrix(const SolverBody& a, const SolverBody& b, const ContactCons
            skewB * b.inverseInertia * skewB;
 }
 
-struct Impact {
-    Real time = 0;   // within the step (s)
-    Real speed = 0;  // normal velocity then (m/s), of the parabola below
-};
+}  // namespace
 
 // When and how fast a point at separation s hits, under a constant normal acceleration a, given
 // its normal velocity vEnd at the end of the step before contact (so vEnd - a h at its start).
@@ -111,8 +108,6 @@ Impact impactWithinStep(Real s, Real vEnd, Real a, Real h) {
     // Stopped although it would not have arrived (pushed by other contacts): the linear guess.
     return {vEnd < 0 ? std::clamp(-s / vEnd, Real(0), h) : h, vEnd};
 }
-
-}  // namespace
 
 // The coupled friction update of one point, solved exactly: the impulse lambda in the disc
 // |lambda| <= r that minimises  1/2 (lambda - old)' K (lambda - old) + vt' (lambda - old),
@@ -198,6 +193,18 @@ void checkSolverSettings(const SolverSettings& s) {
     if (!(std::isfinite(s.restitutionThreshold) && s.restitutionThreshold >= 0)) {
         fail("SolverSettings.restitutionThreshold = ", s.restitutionThreshold,
              " (m/s) must be finite and >= 0");
+    }
+    if (s.softSubsteps < 0)
+        fail("SolverSettings.softSubsteps = ", s.softSubsteps, " must be >= 0");
+    if (!(std::isfinite(s.contactHertz) && s.contactHertz > 0))
+        fail("SolverSettings.contactHertz = ", s.contactHertz, " (Hz) must be finite and > 0");
+    if (!(std::isfinite(s.contactDampingRatio) && s.contactDampingRatio >= 0)) {
+        fail("SolverSettings.contactDampingRatio = ", s.contactDampingRatio,
+             " must be finite and >= 0");
+    }
+    if (!(std::isfinite(s.maxPushOutSpeed) && s.maxPushOutSpeed > 0)) {
+        fail("SolverSettings.maxPushOutSpeed = ", s.maxPushOutSpeed,
+             " (m/s) must be finite and > 0");
     }
 }
 

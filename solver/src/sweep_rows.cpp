@@ -122,7 +122,7 @@ void SweepRows::add(const ContactConstraint& c, std::uint32_t index,
 
 Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                       std::span<NormalFactor> factors, const SolverSettings& settings,
-                      Real inverseH, Real bias) {
+                      Real inverseH, Real bias, const Real* softScales) {
     Real largestChange = 0;
     for (const SweepManifold& m : manifolds_) {
         SolverBody& bodyA = bodies[m.bodyA];
@@ -150,13 +150,44 @@ Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint>
         }
         if (!m.grouped) {
             const Mat4* block = m.block == SweepManifold::kNoBlock ? nullptr : &blocks_[m.block];
+            // The soft step's kinds (SoftContact): 2 against a static body (body 0), else 1.
+            const Real* softScale = softScales == nullptr
+                                        ? nullptr
+                                        : softScales + (m.bodyA == 0 || m.bodyB == 0 ? 2 : 1);
             solveNormals(a, b, m.normal, block, points, m.pointCount, factors[m.constraint],
-                         settings, inverseH, bias, largestChange);
+                         settings, inverseH, bias, largestChange, softScale);
         }
         a.store(bodyA);
         b.store(bodyB);
     }
     return largestChange;
+}
+
+void SweepRows::softTargets(std::span<const Real> separations) {
+    for (std::size_t k = 0; k < points_.size(); ++k)
+        points_[k].separation = separations[k];
+}
+
+void SweepRows::dropBounces() {
+    for (SweepPoint& p : points_) {
+        p.bounces = false;
+        p.bounceCorrection = 0;
+    }
+}
+
+void SweepRows::warmStart(std::span<SolverBody> bodies,
+                          std::span<const ContactConstraint> constraints) {
+    for (const SweepManifold& m : manifolds_) {
+        SolverBody& a = bodies[m.bodyA];
+        SolverBody& b = bodies[m.bodyB];
+        for (int i = 0; i < m.pointCount; ++i)
+            warmStartPoint(a, b, m.normal, m.tangents, points_[m.firstPoint + i]);
+        if (m.angular) {
+            const Vec3& turn = constraints[m.constraint].angularImpulse;
+            a.angularVelocity -= a.inverseInertia * turn;
+            b.angularVelocity += b.inverseInertia * turn;
+        }
+    }
 }
 
 void SweepRows::readGroupImpulses(std::span<const ContactConstraint> constraints) {

@@ -9,8 +9,26 @@
 
 namespace tumble::testkit {
 
+namespace {
+int softSubstepsOverride = 0;                            // forceSoftStep
+Real softHertzOverride = SolverSettings{}.contactHertz;  // forceSoftStep
+}  // namespace
+
+void forceSoftStep(int substeps, Real contactHertz) {
+    softSubstepsOverride = substeps;
+    softHertzOverride = contactHertz;
+}
+
+void applyForcedSoftStep(SolverSettings& settings) {
+    if (softSubstepsOverride == 0)
+        return;
+    settings.softSubsteps = softSubstepsOverride;
+    settings.contactHertz = softHertzOverride;
+}
+
 WorldDef quietWorld(Real timeStep, const Vec3& gravity) {
     WorldDef def;
+    applyForcedSoftStep(def.solver);
     def.gravity = gravity;
     def.timeStep = timeStep;
     def.enableSleep = false;

@@ -370,6 +370,36 @@ TEST(Override, WalksObjectsAndArraysAndParsesJsonValues) {
                  tumble::InvalidArgument);
 }
 
+// `world.solver.softSubsteps` reaches the world: a falling cube follows the substeps' discrete
+// free fall, z0 - g hs^2 M (M + 1) / 2 after M substeps of hs (soft_step_test.cpp), and a contact
+// hertz of 0 is refused naming the field.
+TEST(SceneSolver, SoftStepFromTheFileFallsAtTheSubstep) {
+    const tumble::cli::Json document = tumble::cli::Json::parse(
+        R"({"world": {"solver": {"softSubsteps": 4, "contactHertz": 60}},
+            "bodies": [{"position": [0, 0, 10],
+                        "shapes": [{"type": "box", "halfExtents": [0.5, 0.5, 0.5]}]}]})");
+    const tumble::cli::Scene scene = tumble::cli::parseScene(document, "soft");
+    EXPECT_EQ(scene.world.solver.softSubsteps, 4);
+    EXPECT_EQ(scene.world.solver.contactHertz, 60);
+    tumble::cli::BuiltScene built = tumble::cli::buildScene(scene);
+    constexpr int kSteps = 30;
+    for (int i = 0; i < kSteps; ++i)
+        EXPECT_TRUE(built.world.step().ok());
+    const double hs = built.world.settings().timeStep / 4;
+    const double m = 4 * kSteps;
+    EXPECT_NEAR(built.world.centerOfMass(built.bodies[0]).z(),
+                10 - 9.81 * hs * hs * m * (m + 1) / 2, 1e-9);
+    const tumble::cli::Json bad = tumble::cli::Json::parse(
+        R"({"world": {"solver": {"softSubsteps": 4, "contactHertz": 0}},
+            "bodies": [{"shapes": [{"type": "sphere", "radius": 0.5}]}]})");
+    try {
+        tumble::cli::parseScene(bad, "bad");
+        ADD_FAILURE() << "accepted";
+    } catch (const tumble::InvalidArgument& e) {
+        EXPECT_NE(std::string(e.what()).find("contactHertz"), std::string::npos) << e.what();
+    }
+}
+
 // `world.solver.frictionAnchors` reaches the world: a cube carried by a kinematic slab turning
 // at 1.5 rad/s (slip needs mu g / r = 3.92 rad^2/s^2, omega^2 r = 2.25) holds its spot with
 // anchors; without, velocity-level friction lets it creep outward by about (omega h)^2 r / 2 a

@@ -294,6 +294,12 @@ TEST(Checkpoint, EverySettingRoundTrips) {
     v.projectSprings = false;
     v.jointGeometricStiffness = false;
     v.jointSolve = SpringSolve::Iterative;
+    v.frictionAnchors = false;
+    v.colouredContacts = false;
+    v.softSubsteps = 3;
+    v.contactHertz = 45;
+    v.contactDampingRatio = 4;
+    v.maxPushOutSpeed = 1.5;
     const World original(def);
     World resumed;
     restoreCheckpoint(resumed, checkpointBytes(original));
@@ -325,6 +331,24 @@ TEST(Checkpoint, EverySettingRoundTrips) {
     EXPECT_EQ(w.projectSprings, v.projectSprings);
     EXPECT_EQ(w.jointGeometricStiffness, v.jointGeometricStiffness);
     EXPECT_EQ(w.jointSolve, v.jointSolve);
+    EXPECT_EQ(w.frictionAnchors, v.frictionAnchors);
+    EXPECT_EQ(w.colouredContacts, v.colouredContacts);
+    EXPECT_EQ(w.softSubsteps, v.softSubsteps);
+    EXPECT_EQ(w.contactHertz, v.contactHertz);
+    EXPECT_EQ(w.contactDampingRatio, v.contactDampingRatio);
+    EXPECT_EQ(w.maxPushOutSpeed, v.maxPushOutSpeed);
+}
+
+// The soft step's settings change every step's numbers (a resumed world that fell back to the
+// sweeps would diverge at once), and its impulses are the step's sums in the contact cache.
+TEST(Checkpoint, PileUnderTheSoftStepResumesBitwise) {
+    WorldDef def;
+    def.solver.softSubsteps = 4;
+    def.solver.contactHertz = 45;
+    def.solver.contactDampingRatio = 5;
+    def.solver.maxPushOutSpeed = 2;
+    Scene pile = pileScene(def);
+    expectBitwiseResume(pile, 40, 120);
 }
 
 TEST(Checkpoint, NetCatchingABallResumesBitwise) {

@@ -30,6 +30,7 @@ namespace {
 /// Relative errors of the first five apexes (NaN for an apex never reached).
 std::vector<double> apexErrors(int stepsPerSecond, Stabilisation stabilisation) {
     WorldDef def{.gravity = Vec3(0, 0, -scenes::kG), .timeStep = 1.0 / stepsPerSecond};
+    testkit::applyForcedSoftStep(def.solver);  // tumble-validate --soft-step
     def.solver.stabilisation = stabilisation;
     World world(def);
     const Material surface = scenes::material(0.5, fig45::kRestitution, 1000);

@@ -22,6 +22,14 @@ WorldDef quietWorld(Real timeStep = 1.0 / 60.0, const Vec3& gravity = Vec3(0, 0,
 /// quietWorld without gravity.
 WorldDef weightlessWorld(Real timeStep = 1.0 / 60.0);
 
+/// Every world quietWorld and its callers build from now on runs the soft step with this many
+/// substeps and this contact hertz (SolverSettings::softSubsteps, contactHertz; 0 substeps, the
+/// default: the solver's default). For tumble-validate --soft-step, which checks the cases'
+/// claims under it.
+void forceSoftStep(int substeps, Real contactHertz = SolverSettings{}.contactHertz);
+/// Puts forceSoftStep's settings into `settings` (nothing unless set).
+void applyForcedSoftStep(SolverSettings& settings);
+
 /// The settings of the validation study's and the peers' stack scenes (DESIGN.md section 6):
 /// quietWorld at `timeStep` with `iterations` PGS iterations.
 WorldDef stackWorld(Real timeStep = 1.0 / 60.0, int iterations = 10);

@@ -67,6 +67,17 @@ struct SolverSettings {
     /// manifolds) takes the scalar sweep. On by default: pyramid-20 0.64x the scalar sweep's
     /// time, the rest unchanged (bench/README.md, the colour order).
     bool colouredContacts = true;
+    /// Box2D v3's soft step (docs/ARCHITECTURE.md, "The soft step"), opt-in: > 0 collides once
+    /// per step and runs this many substeps of one soft biased sweep, the positions, and one
+    /// rigid relax sweep, with gravity at h / softSubsteps, on the rows colouredContacts picks;
+    /// iterations, relaxIterations, tolerance and the friction anchors are then unused. 0
+    /// (default): the sweeps above. A world with springs or joints keeps the sweeps. >= 0.
+    int softSubsteps = 0;
+    /// Soft step: natural frequency of a contact between two moving bodies (Hz), > 0; twice it
+    /// against a static body; at most a quarter of the substep rate.
+    Real contactHertz = 30;
+    Real contactDampingRatio = 10;  ///< soft step: of the contact's spring-damper, >= 0
+    Real maxPushOutSpeed = 3;       ///< soft step: fastest removal of penetration (m/s), > 0
 };
 
 enum class JointType : std::uint8_t {

@@ -46,6 +46,9 @@ public:
                       std::span<SegmentContactRow> segments = {});
     /// Time of each stage of the last solve.
     const SolverProfile& profile() const { return profile_; }
+    /// The contact rows alone, for the soft step (SolveStage::runSoft runs its substeps; the
+    /// solver's stages above are not used).
+    ContactSolver& contacts() { return contacts_; }
 
 private:
     /// The prepare stage; returns the deepest penetration (m).

@@ -70,9 +70,16 @@ public:
                const SolverSettings& settings, Real inverseH);
     /// One sweep over the rows, as ContactSolver::solveVelocitySweep (which calls it) without
     /// the exactly solved groups; returns the largest velocity change (m/s) when measuring.
+    /// `soft`: the soft step's biased sweep, each touching point's answer scaled by the mass
+    /// scale softTargets gave it (SweepRows::sweep's softScales, the same bits).
     Real sweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                std::span<NormalFactor> factors, const SolverSettings& settings, Real bias,
-               Real inverseH);
+               Real inverseH, bool soft = false);
+    /// Soft step: each point's separation (`separations`, constraint j's points from
+    /// `firstPoint[j]`) as its target at the substep's inverseH, no bounce; `scales`:
+    /// SoftContact::massScale.
+    void softTargets(std::span<const Real> separations, std::span<const std::uint32_t> firstPoint,
+                     const std::array<Real, 3>& scales, Real slop, Real inverseH);
     /// The normal impulses of the manifolds in exactly solved groups, after the groups' solve.
     void readGroupImpulses(std::span<const ContactConstraint> constraints);
     /// Split impulse's relax sweeps aim at the rebound alone (see ConstraintSolver::relax).
@@ -130,11 +137,11 @@ private:
     Real solveFriction(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6]);
     Real solveNormals(Bundle& bundle, std::span<ContactConstraint> constraints,
                       std::span<NormalFactor> factors, const SolverSettings& settings, Real bias,
-                      Real inverseH, Lane (&v)[2][6]);
+                      Real inverseH, bool soft, Lane (&v)[2][6]);
     Real solveAngularAlone(Bundle& bundle, int lane, std::span<const SolverBody> bodies,
                            ContactConstraint& c, Real omega);
     Real solveNormalsAlone(Bundle& bundle, int lane, ContactConstraint& c, NormalFactor& factor,
-                           const SolverSettings& settings, Real bias, Real inverseH);
+                           const SolverSettings& settings, Real bias, Real inverseH, bool soft);
     void gather(const Bundle& bundle, Lane (&v)[2][6]) const;
     void scatter(const Bundle& bundle, const Lane (&v)[2][6]);
 
@@ -150,6 +157,14 @@ private:
     std::vector<std::uint32_t> groupNext_;
     std::vector<std::uint32_t> order_;  // constraints by group, constraint order within one
     int colourCount_ = 0;
+    // Soft step, per point slot as points_: the separation softTargets wrote (for a lane solved
+    // alone) and the mass scale of the biased sweep (1 for a speculative point and padding).
+    struct SoftSlot {
+        Lane separation, scale;
+    };
+    std::vector<SoftSlot> soft_;
+    std::array<Real, 3> softScales_{1, 1, 1};  // SoftContact::massScale
+    bool softTargets_ = false;                 // since the build: the targets are softTargets'
 };
 
 }  // namespace tumble

@@ -163,6 +163,24 @@ struct PseudoVelocity {
     Vec3 angular = Vec3::Zero();
 };
 
+/// How far a body has moved since the step began (the soft step's separations follow it).
+struct BodyDisplacement {
+    Vec3 translation = Vec3::Zero();  ///< of the centre of mass (m)
+    Vec3 turn = Vec3::Zero();         ///< the substeps' rotation vectors h w, summed (rad)
+};
+
+/// The soft step's contact coefficients for one substep (softContact()), by kind: 0 rigid
+/// (speculative points), 1 between moving bodies, 2 against a static body.
+struct SoftContact {
+    std::array<Real, 3> massScale{1, 1, 1};  ///< the rigid answer's share the row keeps
+    std::array<Real, 3> biasRate{0, 0, 0};   ///< push-out speed per metre of depth (1/s)
+    Real maxPush = 0;                        ///< (m/s)
+    Real slop = 0;  ///< the rows' slop (m): the depth softTargets writes adds it back
+};
+
+/// The soft step's coefficients for a substep of length h (docs/ARCHITECTURE.md).
+SoftContact softContact(const SolverSettings& settings, Real h);
+
 /// The contact rows' part of a solve (ConstraintSolver runs the stages and the other rows).
 /// Everything a step carries over lives in the constraints; the members are this step's groups
 /// of exactly solved rows and scratch.
@@ -191,7 +209,66 @@ public:
     /// compact narrow rows).
     void finish(std::span<ContactConstraint> constraints) const;
 
+    // The soft step (soft_contacts.cpp; SolveStage::runSoft runs the substeps). prepare() ran
+    // with the scalar rows and the cached impulses divided among the substeps.
+    /// Keeps each point's separation at the step's start and its bounce (applied once, at the
+    /// end), and zeroes the sums of the substeps' impulses.
+    void beginSoft(std::span<ContactConstraint> constraints);
+    /// The separations where the bodies now stand (`moved`, by solver body), as the rows'
+    /// targets under `soft`: the speculative gap, or the capped push-out encoded as a depth
+    /// that the biased sweep (bias = h) turns into it. `last`: the step's last relax sweep, where
+    /// a point that may bounce early in the next step is not slowed (soft_contacts.cpp).
+    void softTargets(std::span<ContactConstraint> constraints,
+                     std::span<const BodyDisplacement> moved, const SoftContact& soft,
+                     Real inverseH, bool last);
+    /// A substep's warm start: the accumulated impulses applied again.
+    void softWarmStart(std::span<SolverBody> bodies,
+                       std::span<const ContactConstraint> constraints);
+    /// One sweep of a substep: soft and biased (`soft` given) or rigid without bias (null).
+    void softSweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
+                   const SolverSettings& settings, Real inverseH, const SoftContact* soft);
+    /// After a substep: its impulses into the constraints and added to the sums.
+    void endSoftSubstep(std::span<ContactConstraint> constraints);
+    /// Whether some point may bounce this step (beginSoft: restitution > 0).
+    bool softBounces() const { return !softBounces_.empty(); }
+    /// Which points bounce, and their impacts on the parabola of the substeps' flight, from the
+    /// bodies' velocity changes over the first substep of hs (`change`, by solver body: the
+    /// normal acceleration); h the step, `threshold` SolverSettings::restitutionThreshold.
+    void softImpacts(std::span<const SolverBody> change,
+                     std::span<const ContactConstraint> constraints, Real h, Real hs,
+                     Real threshold);
+    /// After the last substep: restitution once, then the step's sums into the constraints.
+    /// A point that bounced is lifted where its rebound would be at the step's end: `lift` (by
+    /// solver body, zeroed here) gets the displacements, which the caller applies.
+    void endSoft(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
+                 std::span<const BodyDisplacement> moved, std::span<PseudoVelocity> lift);
+
 private:
+    /// One constraint's impulses summed over the substeps (N s).
+    struct SoftSum {
+        std::array<Real, 4> normal{};
+        std::array<std::array<Real, 2>, 4> tangent{};
+        Vec3 angular = Vec3::Zero();
+    };
+    /// A point as the soft step's separations need it, in the scalar rows' order.
+    struct SoftPoint {
+        static constexpr std::uint32_t kNotGrouped = ~0u;
+        Vec3 angularA;  ///< rA x n (m): theta_A . this is the turn's share of the separation
+        Vec3 angularB;  ///< rB x n (m)
+        Vec3 normal;
+        Real start;  ///< separation at the step's start (m)
+        std::uint32_t bodyA;
+        std::uint32_t bodyB;
+        std::uint32_t grouped;  ///< 4 x constraint + point when NormalIslands solves it
+        std::uint8_t kind;      ///< SoftContact's: 1 moving pair, 2 against a static body
+    };
+    struct SoftBounce {
+        std::uint32_t constraint = 0;
+        int point = 0;
+        Real target = 0;  ///< v_n after the bounce (m/s)
+        Real lift = 0;    ///< the separation the rebound reaches by the step's end (m)
+    };
+
     NormalIslands islands_;                  ///< normal rows of small, ill-conditioned groups,
                                              ///< solved exactly
     std::vector<SolverBody> supportBodies_;  ///< scratch of addSupportAcceleration
@@ -200,6 +277,12 @@ private:
     SweepRows narrow_;                       ///< the scalar sweep's compact rows, otherwise
     bool wide_ = false;                      ///< this step sweeps rows_
     bool bounceCorrections_ = false;         ///< some point has one this step
+    std::vector<SoftPoint> softPoints_;      ///< soft step
+    std::vector<Real> softSeparations_;      ///< soft step: the rows' current ones (m)
+    std::vector<std::uint32_t> softFirst_;   ///< soft step: each constraint's first SoftPoint
+    std::vector<SoftSum> softSums_;          ///< soft step: per constraint
+    std::vector<SoftBounce> softBounces_;    ///< soft step: the points that bounce
+    std::vector<std::uint32_t> softLate_;    ///< soft step: restitution > 0, arriving later
 };
 
 }  // namespace tumble

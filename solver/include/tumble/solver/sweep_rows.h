@@ -67,10 +67,17 @@ public:
     /// Appends prepared constraint `index` (after the warm start and the groups' selection).
     void add(const ContactConstraint& c, std::uint32_t index, const SolverSettings& settings);
     /// One sweep, as ContactSolver::solveVelocitySweep (which calls it) without the exactly
-    /// solved groups; returns the largest velocity change (m/s) when measuring.
+    /// solved groups; returns the largest velocity change (m/s) when measuring. `softScales`:
+    /// the soft step's mass scales by SoftContact's kinds (its biased sweep), or null.
     Real sweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                std::span<NormalFactor> factors, const SolverSettings& settings, Real inverseH,
-               Real bias);
+               Real bias, const Real* softScales = nullptr);
+    /// Soft step: the points' separations, one per point in the rows' order.
+    void softTargets(std::span<const Real> separations);
+    /// Soft step: no bounce in the rows (restitution is applied once, after the substeps).
+    void dropBounces();
+    /// Soft step: the accumulated impulses applied to the bodies again (a substep's warm start).
+    void warmStart(std::span<SolverBody> bodies, std::span<const ContactConstraint> constraints);
     /// The normal impulses of the grouped manifolds, after the groups' solve.
     void readGroupImpulses(std::span<const ContactConstraint> constraints);
     /// Split impulse's relax sweeps aim at the rebound alone (see ConstraintSolver::relax).

@@ -1,0 +1,108 @@
+// The soft step (SolverSettings::softSubsteps; docs/ARCHITECTURE.md, "The soft step").
+#include "integrator.h"
+#include "solve_stage.h"
+#include "tumble/core/timed.h"
+
+namespace tumble {
+
+SolverStats SolveStage::runSoft(BodyStore& bodies, const ShapeStore& shapes,
+                                ContactManager& contacts, const StepContext& context,
+                                const SolverSettings& settings) {
+    softRun_ = true;
+    softProfile_ = {};
+    pseudo_.clear();  // the substeps move the bodies themselves
+    const int n = settings.softSubsteps;
+    // Every sweep of the budget runs (the rows, scalar or coloured, take softTargets' targets).
+    SolverSettings rows = settings;
+    rows.tolerance = 0;
+    SolverStats stats;
+    std::span<ContactConstraint> constraints;
+    softProfile_.prepare = timed([&] {
+        loadSolverBodies(bodies, context.h / n);
+        constraints = buildConstraints(bodies, shapes, contacts, context);
+        // The cache holds the step's sums: each substep starts from its share of them.
+        const Real share = Real(1) / n;
+        for (ContactConstraint& c : constraints) {
+            c.angularImpulse *= share;
+            for (int i = 0; i < c.pointCount; ++i) {
+                c.points[i].normalImpulse *= share;
+                c.points[i].tangentImpulse[0] *= share;
+                c.points[i].tangentImpulse[1] *= share;
+            }
+        }
+        ContactSolver& solver = solver_.contacts();
+        stats.deepestPenetration = solver.prepare(solverBodies_, constraints, context.h, rows);
+        solver.beginSoft(constraints);
+    });
+    softProfile_.velocity = timed([&] { softSubsteps(bodies, constraints, context, rows); });
+    stats.iterations = n;
+    storeImpulses(contacts, constraints, false);
+    return stats;
+}
+
+// Per substep, as Box2D v3's solver stages: velocities (gravity at h / n), the warm start (the
+// first is prepare's), one soft biased sweep at the separations where the bodies stand, the
+// positions, one rigid sweep without bias at the new separations. The solver bodies carry the
+// velocities; the body store integrates them.
+void SolveStage::softSubsteps(BodyStore& bodies, std::span<ContactConstraint> constraints,
+                              const StepContext& context, const SolverSettings& settings) {
+    const int n = settings.softSubsteps;
+    const StepContext sub{context.h / n, context.inverseH * n, context.gravity};
+    const SoftContact soft = softContact(settings, sub.h);
+    ContactSolver& solver = solver_.contacts();
+    softStart_.resize(bodies.awake.size());
+    for (std::size_t k = 0; k < bodies.awake.size(); ++k)
+        softStart_[k] = bodies.motion[bodies.awake[k]].center;
+    moved_.assign(solverBodies_.size(), BodyDisplacement{});
+    for (int k = 0; k < n; ++k) {
+        storeVelocities(bodies);
+        // The bounces' impacts need the normal acceleration: the first substep's change.
+        const bool impacts = k == 0 && solver.softBounces();
+        if (impacts)
+            softChange_.assign(solverBodies_.size(), SolverBody{});
+        for (std::size_t b = 0; impacts && b < bodies.awake.size(); ++b) {
+            const BodyMotion& m = bodies.motion[bodies.awake[b]];
+            softChange_[1 + b].linearVelocity = -m.linearVelocity;
+            softChange_[1 + b].angularVelocity = -m.angularVelocity;
+        }
+        integrateVelocities(bodies, sub);
+        for (std::size_t b = 0; b < bodies.awake.size(); ++b) {
+            const BodyMotion& m = bodies.motion[bodies.awake[b]];
+            solverBodies_[1 + b].linearVelocity = m.linearVelocity;
+            solverBodies_[1 + b].angularVelocity = m.angularVelocity;
+            if (impacts) {
+                softChange_[1 + b].linearVelocity += m.linearVelocity;
+                softChange_[1 + b].angularVelocity += m.angularVelocity;
+            }
+        }
+        if (impacts)
+            solver.softImpacts(softChange_, constraints, context.h, sub.h,
+                               settings.restitutionThreshold);
+        if (k > 0)
+            solver.softWarmStart(solverBodies_, constraints);
+        solver.softTargets(constraints, moved_, soft, sub.inverseH, false);
+        solver.softSweep(solverBodies_, constraints, settings, sub.inverseH, &soft);
+        storeVelocities(bodies);
+        integratePositions(bodies, {}, sub);
+        measureDisplacements(bodies, sub.h);
+        solver.softTargets(constraints, moved_, soft, sub.inverseH, k == n - 1);
+        solver.softSweep(solverBodies_, constraints, settings, sub.inverseH, nullptr);
+        solver.endSoftSubstep(constraints);
+    }
+    softLift_.resize(solverBodies_.size());
+    solver.endSoft(solverBodies_, constraints, moved_, softLift_);
+    storeVelocities(bodies);
+    if (solver.softBounces())
+        displaceBodies(bodies, std::span<const PseudoVelocity>(softLift_).subspan(1), 1);
+}
+
+void SolveStage::measureDisplacements(const BodyStore& bodies, Real h) {
+    for (std::size_t k = 0; k < bodies.awake.size(); ++k) {
+        const BodyMotion& now = bodies.motion[bodies.awake[k]];
+        BodyDisplacement& d = moved_[1 + k];
+        d.translation = now.center - softStart_[k];
+        d.turn += h * now.angularVelocity;  // what integratePositions turned it by
+    }
+}
+
+}  // namespace tumble

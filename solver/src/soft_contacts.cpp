@@ -1,0 +1,252 @@
+// The contact rows' part of the soft step (docs/ARCHITECTURE.md, "The soft step").
+#include <algorithm>
+#include <numbers>
+
+#include "bounce_support.h"
+#include "contact_kernels.h"
+#include "normal_block.h"
+#include "tumble/solver/contact_solver.h"
+
+namespace tumble {
+namespace {
+
+// A contact held by a spring k = m w^2 and a damper c = 2 m zeta w on its depth, integrated by
+// implicit Euler over h, is a rigid row that keeps `massScale` of the rigid answer (m the row's
+// effective mass), aims at pushing out `biasRate` x depth per second, and lets go of the rest
+// of its accumulated impulse: lambda = massScale (lambda_old - m (v_n - biasRate d)). Its
+// stiffness is relative to m, so a light body on a heavy one is as stiff as the reverse.
+void setSoft(SoftContact& soft, int kind, Real hertz, Real dampingRatio, Real h) {
+    const Real omega = 2 * std::numbers::pi * hertz;
+    const Real a1 = 2 * dampingRatio + h * omega;
+    const Real a2 = h * omega * a1;
+    soft.massScale[kind] = a2 / (1 + a2);
+    soft.biasRate[kind] = omega / a1;
+}
+
+// The separation of a soft point where the bodies now stand (softTargets says how).
+template <class SoftPoint>
+Real separationNow(const SoftPoint& q, std::span<const BodyDisplacement> moved) {
+    const BodyDisplacement& a = moved[q.bodyA];
+    const BodyDisplacement& b = moved[q.bodyB];
+    return q.start + q.normal.dot(b.translation - a.translation) + b.turn.dot(q.angularB) -
+           a.turn.dot(q.angularA);
+}
+
+}  // namespace
+
+// A gap (m) no step closes: -kUnreachable / hs is no target a body reaches.
+constexpr Real kUnreachable = 1e3;
+
+// A spring faster than a quarter of the substep rate is not resolved by one iteration a
+// substep (Box2D's limit); against a static body, which takes none of the motion, twice as stiff.
+SoftContact softContact(const SolverSettings& settings, Real h) {
+    SoftContact soft;
+    const Real hertz = std::min(settings.contactHertz, 0.25 / h);
+    setSoft(soft, 1, hertz, settings.contactDampingRatio, h);
+    setSoft(soft, 2, 2 * hertz, settings.contactDampingRatio, h);
+    soft.maxPush = settings.maxPushOutSpeed;
+    soft.slop = settings.slop;
+    return soft;
+}
+
+void ContactSolver::beginSoft(std::span<ContactConstraint> constraints) {
+    softSums_.assign(constraints.size(), SoftSum{});
+    softBounces_.clear();
+    softLate_.clear();
+    softPoints_.clear();
+    softFirst_.resize(constraints.size());
+    for (std::size_t j = 0; j < constraints.size(); ++j) {
+        ContactConstraint& c = constraints[j];
+        softFirst_[j] = static_cast<std::uint32_t>(softPoints_.size());
+        const bool grouped = c.normalGroup != NormalIslands::kNone;
+        for (int i = 0; i < c.pointCount; ++i) {
+            ContactConstraintPoint& p = c.points[i];
+            softPoints_.push_back(
+                {p.angularA, p.angularB, c.normal, p.separation, c.bodyA, c.bodyB,
+                 grouped ? static_cast<std::uint32_t>(4 * j + i) : SoftPoint::kNotGrouped,
+                 static_cast<std::uint8_t>(c.bodyA == 0 || c.bodyB == 0 ? 2 : 1)});
+            if (c.restitution > 0)  // softImpacts decides, with the substeps' acceleration
+                softBounces_.push_back({static_cast<std::uint32_t>(j), i});
+            p.bounces = false;  // the exactly solved groups read them from here
+            p.bounceCorrection = 0;
+        }
+    }
+    softSeparations_.resize(softPoints_.size());
+    narrow_.dropBounces();
+}
+
+// s = s0 + n . (dB - dA), d the displacement of the body's material point at the contact to
+// first order in the turn, t + theta x r, with the anchors and the normal of the step's start
+// (the collision is not run again); n . (theta x r) = theta . (r x n), prepare's angular rows,
+// so a point costs three dot products (two cross products were a tenth of the soft step). The exact
+// rotation, t + (R - 1) r, lifts a rolling ball's point by r (1 - cos theta) (1.4 mm a step for r =
+// 0.1 m at 1 m/s, h = 1/60): speculative, the ball lost its support for the step's last substeps,
+// and the rolling-resistance case's roll-out fell 24 % short. The biased target is the spring's
+// push-out, capped, from the whole depth: the spring has no dead zone, or a resting body would
+// creep through the slop at the (1 - massScale) of its weight the soft row gives way each substep
+// (1.2 mm/s on the ground at 60 Hz). The rows compute bias / h x (depth - slop), so with bias = h
+// the depth written is slop + that push. The points are read from a compact copy in the rows' order
+// (through the constraints, 3 KB each, this pass was a tenth of pyramid-20's soft step).
+void ContactSolver::softTargets(std::span<ContactConstraint> constraints,
+                                std::span<const BodyDisplacement> moved, const SoftContact& soft,
+                                Real inverseH, bool last) {
+    for (std::size_t k = 0; k < softPoints_.size(); ++k) {
+        const SoftPoint& q = softPoints_[k];
+        const Real s = separationNow(q, moved);
+        const Real separation =
+            s > 0 ? s : -soft.slop - std::min(-soft.biasRate[q.kind] * s, soft.maxPush);
+        softSeparations_[k] = separation;
+        if (q.grouped != SoftPoint::kNotGrouped)
+            constraints[q.grouped / 4].points[q.grouped % 4].separation = separation;
+    }
+    // The step's last relax sweep would slow a point that reaches the surface early in the next
+    // step so that it lands at the end of the next substep, and the next step's bounce would
+    // start from that speed (a ball at 4.2 m/s, h = 1/1000, rebounded 14 % low). The next step's
+    // first sweeps, before anything moves, stop it; here its gap is made one no step closes.
+    for (const std::uint32_t k : softLate_) {
+        if (!last || !(softSeparations_[k] > 0))
+            continue;
+        softSeparations_[k] += kUnreachable;
+        const SoftPoint& q = softPoints_[k];
+        if (q.grouped != SoftPoint::kNotGrouped)
+            constraints[q.grouped / 4].points[q.grouped % 4].separation = softSeparations_[k];
+    }
+    if (wide_)
+        rows_.softTargets(softSeparations_, softFirst_, soft.massScale, soft.slop, inverseH);
+    else
+        narrow_.softTargets(softSeparations_);
+}
+
+// In constraint order, as the scalar rows': the coloured rows' impulses are in the constraints
+// (endSoftSubstep), and every body meets its manifolds in the same order either way.
+void ContactSolver::softWarmStart(std::span<SolverBody> bodies,
+                                  std::span<const ContactConstraint> constraints) {
+    if (!wide_) {
+        narrow_.warmStart(bodies, constraints);
+        return;
+    }
+    for (const ContactConstraint& c : constraints) {
+        SolverBody& a = bodies[c.bodyA];
+        SolverBody& b = bodies[c.bodyB];
+        for (int i = 0; i < c.pointCount; ++i)
+            warmStartPoint(a, b, c.normal, c.tangents, c.points[i]);
+        if (c.spinMass > 0 || c.rollingActive) {
+            a.angularVelocity -= a.inverseInertia * c.angularImpulse;
+            b.angularVelocity += b.inverseInertia * c.angularImpulse;
+        }
+    }
+}
+
+void ContactSolver::softSweep(std::span<SolverBody> bodies,
+                              std::span<ContactConstraint> constraints,
+                              const SolverSettings& settings, Real inverseH,
+                              const SoftContact* soft) {
+    const Real bias = soft != nullptr ? 1 / inverseH : 0;
+    if (wide_) {
+        rows_.sweep(bodies, constraints, factors_, settings, bias, inverseH, soft != nullptr);
+    } else {
+        narrow_.sweep(bodies, constraints, factors_, settings, inverseH, bias,
+                      soft != nullptr ? soft->massScale.data() : nullptr);
+    }
+    if (!islands_.empty()) {
+        islands_.solve(bodies, constraints, settings.relaxation, bias, settings.slop, inverseH);
+        if (wide_)
+            rows_.readGroupImpulses(constraints);
+        else
+            narrow_.readGroupImpulses(constraints);
+    }
+}
+
+void ContactSolver::endSoftSubstep(std::span<ContactConstraint> constraints) {
+    finish(constraints);
+    for (std::size_t j = 0; j < constraints.size(); ++j) {
+        const ContactConstraint& c = constraints[j];
+        SoftSum& sum = softSums_[j];
+        for (int i = 0; i < c.pointCount; ++i) {
+            sum.normal[i] += c.points[i].normalImpulse;
+            sum.tangent[i][0] += c.points[i].tangentImpulse[0];
+            sum.tangent[i][1] += c.points[i].tangentImpulse[1];
+        }
+        sum.angular += c.angularImpulse;
+    }
+}
+
+// The substeps (v += a hs, then x += hs v) put a free point on the parabola x0 + w t + a t^2 / 2
+// with w = v0 + a hs / 2 (impactWithinStep, which reads w from vEnd = w + a h / 2). The bounce
+// restarts that parabola at the impact with -e times its speed; by the step's end the point is
+// `lift` above the surface, and the velocity that continues the parabola under the next step's
+// substeps runs half a substep behind it. Box2D's -e v0 on the substeps' end state instead (the
+// bounce one step late at the approach speed of the step's start, with the time after the
+// impact lost) put the apexes 1.6-7.4 % low at h = 1/240 and 10-14 % at 1/1000.
+void ContactSolver::softImpacts(std::span<const SolverBody> change,
+                                std::span<const ContactConstraint> constraints, Real h, Real hs,
+                                Real threshold) {
+    std::size_t kept = 0;
+    for (SoftBounce& bounce : softBounces_) {
+        const ContactConstraint& c = constraints[bounce.constraint];
+        const ContactConstraintPoint& p = c.points[bounce.point];
+        const Vec3 dv = change[c.bodyB].velocityAt(p.rB) - change[c.bodyA].velocityAt(p.rA);
+        const Real a = c.normal.dot(dv) / hs;
+        const Real w = p.approachSpeed + 0.5 * a * hs;
+        const Real start = softPoints_[softFirst_[bounce.constraint] + bounce.point].start;
+        // Only a point that reaches the surface within the step, fast, bounces: the test on the
+        // speed at the step's start alone missed a ball that gravity brings down within it.
+        if (!(start <= 0 || start + h * (w + 0.5 * a * h) < 0)) {
+            softLate_.push_back(softFirst_[bounce.constraint] + bounce.point);
+            continue;
+        }
+        const Impact impact = impactWithinStep(start, w + 0.5 * a * h, a, h);
+        if (!(impact.speed < -threshold))
+            continue;
+        const Real rest = h - impact.time;
+        bounce.target = -c.restitution * impact.speed + a * (rest - 0.5 * hs);
+        bounce.lift = -c.restitution * impact.speed * rest + 0.5 * a * rest * rest;
+        softBounces_[kept++] = bounce;
+    }
+    softBounces_.resize(kept);
+}
+
+// Newton's law once, on the velocities the substeps left, for the points that approached
+// faster than the threshold and carried load within the step: v_n >= target, the impulse
+// added to the last substep's (which it may not make negative) and to the step's sum. Then the
+// point is moved to its rebound's separation by a displacement along its normal row (its
+// effective mass times the shortfall, as a split impulse's position correction).
+void ContactSolver::endSoft(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
+                            std::span<const BodyDisplacement> moved,
+                            std::span<PseudoVelocity> lift) {
+    std::fill(lift.begin(), lift.end(), PseudoVelocity{});
+    for (const SoftBounce& bounce : softBounces_) {
+        ContactConstraint& c = constraints[bounce.constraint];
+        ContactConstraintPoint& p = c.points[bounce.point];
+        Real& sum = softSums_[bounce.constraint].normal[bounce.point];
+        if (!(sum > 0))
+            continue;
+        SolverBody& a = bodies[c.bodyA];
+        SolverBody& b = bodies[c.bodyB];
+        const Real vn = normalSpeed(a, b, c.normal, p);
+        const Real next = std::max<Real>(0, p.normalImpulse + p.normalMass * (bounce.target - vn));
+        applyNormal(a, b, c.normal, p, next - p.normalImpulse);
+        sum += next - p.normalImpulse;
+        p.normalImpulse = next;
+        const SoftPoint& q = softPoints_[softFirst_[bounce.constraint] + bounce.point];
+        const Real shortfall = bounce.lift - separationNow(q, moved);
+        if (shortfall > 0) {
+            const Real push = p.normalMass * shortfall;
+            lift[c.bodyA].linear -= (a.inverseMass * push) * c.normal;
+            lift[c.bodyA].angular -= push * p.angularImpulseA;
+            lift[c.bodyB].linear += (b.inverseMass * push) * c.normal;
+            lift[c.bodyB].angular += push * p.angularImpulseB;
+        }
+    }
+    for (std::size_t j = 0; j < constraints.size(); ++j) {
+        ContactConstraint& c = constraints[j];
+        const SoftSum& sum = softSums_[j];
+        for (int i = 0; i < c.pointCount; ++i) {
+            c.points[i].normalImpulse = sum.normal[i];
+            c.points[i].tangentImpulse = sum.tangent[i];
+        }
+        c.angularImpulse = sum.angular;
+    }
+}
+
+}  // namespace tumble
