@@ -160,6 +160,58 @@ int groupManifolds(std::vector<TriangleManifold>& manifolds,
     return groups;
 }
 
+/// The squared distance from the nearest of `manifolds`' points to the farthest of tm's.
+Real farthestFrom(const std::vector<TriangleManifold>& manifolds, const TriangleManifold& tm) {
+    Real farthest = 0;
+    for (int k = 0; k < tm.manifold.pointCount; ++k) {
+        Real nearest = INFINITY;
+        for (const TriangleManifold& other : manifolds)
+            for (int q = 0; q < other.manifold.pointCount; ++q)
+                nearest =
+                    std::min(nearest, (other.manifold.points[static_cast<std::size_t>(q)].position -
+                                       tm.manifold.points[static_cast<std::size_t>(k)].position)
+                                          .squaredNorm());
+        farthest = std::max(farthest, nearest);
+    }
+    return farthest;
+}
+
+/// Groups the speculative manifolds of internal features (keepSpeculative,
+/// collide_mesh_edges.cpp) after the others (`kept`, grouped into the first `groups`): each joins
+/// a group of like normal; the rest seed the groups left, first the one that reaches farthest
+/// from every kept point (the part of the shape nothing else holds); past the limit, none.
+int groupSpeculative(std::vector<TriangleManifold>& speculative,
+                     const std::vector<TriangleManifold>& kept,
+                     std::array<Vec3, ManifoldSet::kMaxManifolds>& normals, int groups) {
+    const auto join = [&](int first) {
+        for (TriangleManifold& tm : speculative)
+            for (int g = first; g < groups && tm.group == kUngrouped; ++g)
+                if (tm.manifold.normal.dot(normals[static_cast<std::size_t>(g)]) >= kMergeCos)
+                    tm.group = static_cast<std::uint8_t>(g);
+    };
+    for (TriangleManifold& tm : speculative)
+        tm.group = kUngrouped;
+    join(0);
+    while (groups < ManifoldSet::kMaxManifolds) {
+        const TriangleManifold* seed = nullptr;
+        Real farthest = -1;
+        for (const TriangleManifold& tm : speculative) {
+            if (tm.group != kUngrouped)
+                continue;
+            const Real reach = farthestFrom(kept, tm);
+            if (reach > farthest) {
+                farthest = reach;
+                seed = &tm;
+            }
+        }
+        if (seed == nullptr)
+            break;
+        normals[static_cast<std::size_t>(groups++)] = seed->manifold.normal;
+        join(groups - 1);
+    }
+    return groups;
+}
+
 /// Whether `c` lies where one of the first `count` candidates does: one point found twice (by the
 /// clipping and by the half-space routine, or as the exact deepest point). The first keeps its
 /// id and takes the deeper separation: the reduction then never chooses between two ids for one
@@ -239,6 +291,39 @@ void merge(const std::vector<TriangleManifold>& manifolds, int group, const Vec3
         count = dropBetween(candidates.data(), count, normal);
     reduceContacts(std::span<const ContactPoint>(candidates.data(), count), normal, out);
     keepDeepest(candidates, count, out);
+    out.normal = normal;
+}
+
+/// Fills `out` (a group's manifold) up to Manifold::kMaxPoints with the group's speculative points
+/// of internal features (keepSpeculative, collide_mesh_edges.cpp), each time the one farthest
+/// from those kept. They only fill: the reduction weighs area, and a speculative point on a
+/// triangle's edge, measured to that triangle, took the place of a box corner over the next one
+/// at a tenth of its separation.
+void fillSpeculative(const std::vector<TriangleManifold>& speculative, int group, Manifold& out) {
+    while (out.pointCount < Manifold::kMaxPoints) {
+        const ContactPoint* farthest = nullptr;
+        std::uint32_t triangle = 0;
+        Real far = kSamePoint * kSamePoint;
+        for (const TriangleManifold& tm : speculative) {
+            for (int k = 0; k < tm.manifold.pointCount && tm.group == group; ++k) {
+                const ContactPoint& c = tm.manifold.points[static_cast<std::size_t>(k)];
+                Real nearest = INFINITY;
+                for (int q = 0; q < out.pointCount; ++q)
+                    nearest = std::min(
+                        nearest, (out.points[static_cast<std::size_t>(q)].position - c.position)
+                                     .squaredNorm());
+                if (nearest > far) {
+                    far = nearest;
+                    farthest = &c;
+                    triangle = tm.triangle;
+                }
+            }
+        }
+        if (farthest == nullptr)
+            return;
+        out.add(farthest->position, farthest->separation,
+                farthest->featureId ^ triangle * kTriangleMix);
+    }
 }
 
 }  // namespace
@@ -261,10 +346,12 @@ void collideConvexMesh(const Shape& a, const Transform& poseA, const Shape& b,
     finishEdgeContacts(roundingRadius(a), s.kept);
     std::array<Vec3, ManifoldSet::kMaxManifolds> normals;
     out.count = groupManifolds(s.kept.manifolds, normals);
+    out.count = groupSpeculative(s.kept.speculative, s.kept.manifolds, normals, out.count);
     for (int g = 0; g < out.count; ++g) {
         Manifold& m = out.manifolds[static_cast<std::size_t>(g)];
         m = Manifold{};  // the pair's record copies all of it, unused points included
         merge(s.kept.manifolds, g, normals[static_cast<std::size_t>(g)], m);
+        fillSpeculative(s.kept.speculative, g, m);
         m.normal = poseB.rotation * m.normal;
         for (int k = 0; k < m.pointCount; ++k) {
             ContactPoint& c = m.points[static_cast<std::size_t>(k)];

@@ -21,6 +21,7 @@
 #include <cstdlib>
 #include <vector>
 
+#include "clipping.h"
 #include "collide_mesh_edges.h"
 #include "gjk.h"
 #include "mesh_triangles.h"
@@ -41,6 +42,8 @@ constexpr Real kWedgeCos = 0.99862953475457383;
 constexpr std::uint32_t kFaceRedoTag = 0x5BD1E995u;
 /// Marks the ids of points kept with the face normal though the redo dropped them (onFaceNormal).
 constexpr std::uint32_t kUnclaimedTag = 0x68E31DA4u;
+/// Marks the ids of speculative points kept from an internal edge or vertex (keepSpeculative).
+constexpr std::uint32_t kSpeculativeTag = 0x1B873593u;
 /// Marks the ids of points kept below an internal edge (offerGap).
 constexpr std::uint32_t kGapTag = 0x2545F491u;
 /// The id of the shape's deepest point along a face normal.
@@ -301,6 +304,28 @@ TriangleManifold onFaceNormal(const TriangleManifold& edge, const Vec3& normal) 
     return out;
 }
 
+/// The pair routine's speculative points (ahead of the shape, within the margin) on an internal
+/// edge or vertex whose redo along the face normal `normal` kept nothing over the triangle: kept
+/// with the face normal and the pair's separation, the distance to the triangle. Over a bump's
+/// vertex, the part of a tilted cylinder's rim (or a hull's corner) nearest the vertex projects
+/// along each face normal onto a neighbour, and the half-space routine's few points per plane lie
+/// elsewhere: no triangle offered a point there, and a landing cylinder's rim swung 3 cm into the
+/// terrain within one step (TerrainTunnel). Points below the plane are the gaps' (offerGap).
+/// Not for rounded shapes: a rolling ball's point ahead, measured to the next triangle, nears
+/// faster than its distance allows in a step, a bump of 0.19 m/s (MeshContact).
+void keepSpeculative(const TriangleManifold& pair, const Vec3& normal,
+                     std::vector<TriangleManifold>& out) {
+    TriangleManifold kept{{}, pair.triangle};
+    kept.manifold.normal = normal;
+    for (int k = 0; k < pair.manifold.pointCount; ++k) {
+        const ContactPoint& c = pair.manifold.points[static_cast<std::size_t>(k)];
+        if (c.separation > 0)
+            kept.manifold.add(c.position, c.separation, c.featureId ^ kSpeculativeTag);
+    }
+    if (kept.manifold.pointCount > 0)
+        out.push_back(kept);
+}
+
 /// Whether another triangle than g's own holds g's point of the shape: one kept a point of the
 /// same id (for a rounded shape, the same core: its point lies elsewhere along each normal); or
 /// the point lies on or below one's plane and over it (inside the solid it bounds) and that one
@@ -311,9 +336,18 @@ bool heldElsewhere(const std::vector<MeshTriangle>& triangles, const std::vector
                    const std::vector<TriangleManifold>& manifolds, std::size_t kept,
                    const GapPoint& g) {
     const auto end = manifolds.begin() + static_cast<std::ptrdiff_t>(kept);
+    // Kept a point as deep as g's: beside a valley's internal edge each face's deepest point of a
+    // cylinder's rim lay over the other face, so each took the other as holding it, and the
+    // rim went 2 cm into the terrain without a point (TerrainTunnel).
     const auto keeps = [&](std::uint32_t triangle) {
-        return std::any_of(manifolds.begin(), end,
-                           [&](const TriangleManifold& tm) { return tm.triangle == triangle; });
+        return std::any_of(manifolds.begin(), end, [&](const TriangleManifold& tm) {
+            return tm.triangle == triangle &&
+                   std::any_of(tm.manifold.points.begin(),
+                               tm.manifold.points.begin() + tm.manifold.pointCount,
+                               [&](const ContactPoint& c) {
+                                   return c.separation <= g.point.separation + kDepthTolerance;
+                               });
+        });
     };
     const std::uint32_t redoId = g.point.featureId ^ kGapTag;
     const bool keptAsIs = std::any_of(manifolds.begin(), end, [&](const TriangleManifold& tm) {
@@ -356,6 +390,7 @@ void fileTriangleContact(const Shape& shape, const Transform& pose, const Shape&
                          const MeshTriangle& t, Real margin, TriangleManifold tm,
                          EdgeContacts& out) {
     const Vec3 normal = intoTriangle(shape, pose, surface, t);
+    const TriangleManifold pair = tm;
     if (tm.manifold.pointCount > 0) {
         const std::uint8_t edges = featureEdges(t, -tm.manifold.normal);
         // An active edge or vertex keeps its own normal if it lies in the feature's normal cone;
@@ -380,6 +415,9 @@ void fileTriangleContact(const Shape& shape, const Transform& pose, const Shape&
     alongFace(shape, pose, t, normal, margin, tm.manifold, out.gaps);
     if (tm.manifold.pointCount > 0)
         out.manifolds.push_back(tm);
+    else if (pair.manifold.pointCount > 0 && roundingRadius(shape) == 0 &&
+             featureEdges(t, -pair.manifold.normal) != 0)
+        keepSpeculative(pair, normal, out.speculative);
 }
 
 void finishEdgeContacts(Real rounding, EdgeContacts& out) {

@@ -37,14 +37,16 @@ struct GapPoint {
 /// What the edge rules keep of a pair's triangles; cleared for each pair, grown and kept (no
 /// allocation in a warm step).
 struct EdgeContacts {
-    std::vector<TriangleManifold> manifolds;  ///< kept, each with its normal
-    std::vector<TriangleManifold> unclaimed;  ///< the fallback when nothing else is kept
+    std::vector<TriangleManifold> manifolds;    ///< kept, each with its normal
+    std::vector<TriangleManifold> unclaimed;    ///< the fallback when nothing else is kept
+    std::vector<TriangleManifold> speculative;  ///< ahead of the shape on internal features
     std::vector<GapPoint> gaps;
     std::vector<MeshTriangle> triangles;  ///< all under the shape's box, in walk order
 
     void clear() {
         manifolds.clear();
         unclaimed.clear();
+        speculative.clear();
         gaps.clear();
         triangles.clear();
     }

@@ -106,23 +106,23 @@ template <class Point>
     const Lane m1 = q.tangentMoments[1];
     const Lane c0 = axes[0] * b0 + axes[2] * b1;  // axes' b
     const Lane c1 = axes[1] * b0 + axes[3] * b1;
-    const Lane largestMoment = select(greater(m1, m0), m1, m0);
     const Lane one = splat(1);
-    Lane nu{};
+    const Lane bound0 = squareRoot(c0 * c0 + c1 * c1) / radius - m1;
+    const Lane bound1 = absolute(c0) / radius - m0;
+    Lane nu = positivePart(select(greater(bound1, bound0), bound1, bound0));
     LaneMask going = rim;
     for (int iteration = 0; iteration < 20 && any(going); ++iteration) {
-        const Lane d0 = m0 + nu;
-        const Lane d1 = m1 + nu;
-        const Lane q0 = c0 / d0;
-        const Lane q1 = c1 / d1;
-        const Lane length = squareRoot(q0 * q0 + q1 * q1);
-        const Lane derivative = ((q0 * q0) / d0 + (q1 * q1) / d1) / ((length * length) * length);
-        const Lane step = (one / length - one / radius) / derivative;
+        const Lane s0 = one / (m0 + nu);
+        const Lane s1 = one / (m1 + nu);
+        const Lane q0 = c0 * s0;
+        const Lane q1 = c1 * s1;
+        const Lane squared = q0 * q0 + q1 * q1;
+        const Lane length = squareRoot(squared);
+        const Lane step = squared * (one - length / radius) / (q0 * q0 * s0 + q1 * q1 * s1);
         const Lane next = positivePart(nu - step);
         nu = select(going, next, nu);
         // solveDisc stops once |step| <= tol: a NaN step goes on there, and here.
-        going &=
-            ~reinterpret_cast<LaneMask>(absolute(step) <= splat(1e-12) * (next + largestMoment));
+        going &= ~reinterpret_cast<LaneMask>(absolute(step) <= splat(1e-5) * (next + m1));
     }
     const Lane q0 = c0 / (m0 + nu);
     const Lane q1 = c1 / (m1 + nu);

@@ -121,21 +121,30 @@ Impact impactWithinStep(Real s, Real vEnd, Real a, Real h) {
 //
 // Sliding case: a trust-region problem; lambda(nu) = (K + nu 1)^-1 b with b = K old - vt, and the
 // multiplier nu >= 0 solves |lambda(nu)| = r. Newton on 1/|lambda(nu)| - 1/r, which is concave
-// and increasing in nu, converges monotonically from nu = 0 (More & Sorensen).
+// and increasing in nu, converges monotonically from any nu left of the root (More & Sorensen).
 // (solveDisc, inline in contact_kernels.h, returns the free answer when it is in the disc.)
 Vec2 solveDiscRim(const DiscBlock& k, const Vec2& b, Real radius) {
-    const Vec2& moments = k.moments;
+    const Vec2& moments = k.moments;  // moments(0) <= moments(1)
     const Vec2 c = k.axes.transpose() * b;
-    Real nu = 0;
+    // |lambda(nu)| >= |c| / (moments(1) + nu) and >= |c0| / (moments(0) + nu), so at this nu
+    // lambda is still outside the disc: Newton starts left of the root, where it stays
+    // monotone, and for a nearly isotropic K (contacts near the centre line) it is the root.
+    const Real bound0 = std::sqrt(c(0) * c(0) + c(1) * c(1)) / radius - moments(1);
+    const Real bound1 = std::abs(c(0)) / radius - moments(0);
+    Real nu = std::max<Real>(0, std::max(bound0, bound1));
     for (int iteration = 0; iteration < 20; ++iteration) {
-        const Vec2 q = c.cwiseQuotient(moments + Vec2::Constant(nu));  // lambda in the eigenbasis
-        const Real length = q.norm();
-        const Real derivative =
-            q.cwiseProduct(q).cwiseQuotient(moments + Vec2::Constant(nu)).sum() /
-            (length * length * length);
-        const Real step = (1 / length - 1 / radius) / derivative;
+        const Real s0 = 1 / (moments(0) + nu);
+        const Real s1 = 1 / (moments(1) + nu);
+        const Real q0 = c(0) * s0;  // lambda in the eigenbasis
+        const Real q1 = c(1) * s1;
+        const Real squared = q0 * q0 + q1 * q1;
+        const Real length = std::sqrt(squared);
+        // (1/|q| - 1/r) / (d/dnu 1/|q|), with d/dnu 1/|q| = (q0^2 s0 + q1^2 s1) / |q|^3.
+        const Real step = squared * (1 - length / radius) / (q0 * q0 * s0 + q1 * q1 * s1);
         nu = std::max<Real>(0, nu - step);
-        if (std::abs(step) <= 1e-12 * (nu + moments.maxCoeff()))
+        // Quadratic convergence: the step after this one would be ~1e-10 of nu's scale (the
+        // rims of pile-1000 contract as e' ~ 0.02 e^2), far below what a sweep resolves.
+        if (std::abs(step) <= 1e-5 * (nu + moments(1)))
             break;
     }
     const Vec2 lambda = k.axes * c.cwiseQuotient(moments + Vec2::Constant(nu));

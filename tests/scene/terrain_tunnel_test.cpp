@@ -20,7 +20,11 @@
 // terrain pushed sideways and down by normals such as (-1, 0, -0.02): the thin prism's least way
 // out is through its side). With such normals redone along the face normal (withinCone), every
 // kind is asserted: measured box, sphere, capsule, cylinder, hull 0.023, 0.007, 0.008, 0.017 and
-// 0.029 m on the terrain, 0.032, 0.010, 0.017, 0.023 and 0.029 m on the half-space.
+// 0.029 m on the terrain, 0.032, 0.010, 0.017, 0.023 and 0.029 m on the half-space. Later a
+// landing cylinder's rim went 2.9 cm in by a bump's vertex that had no speculative point
+// (LandingCylinderGetsASpeculativePointByABumpVertex); with those points kept, and a valley's
+// gap points no longer dropped as held by a shallower point: 0.017, 0.007, 0.008, 0.015 and
+// 0.026 m on the terrain, 0.028, 0.010, 0.016, 0.018 and 0.027 m on the half-space.
 
 #include <gtest/gtest.h>
 
@@ -33,6 +37,7 @@
 #include <vector>
 
 #include "bench/harness/terrain.h"
+#include "tumble/collision/narrowphase.h"
 #include "tumble/world.h"
 
 namespace tumble::bench {
@@ -227,6 +232,35 @@ TEST(TerrainTunnel, SphereOverInternalEdgeKeepsItsContact) {
         ASSERT_EQ(world.contacts().size(), 1u) << "z = " << z;
         EXPECT_GT(world.contacts()[0].manifold.pointCount, 0) << "z = " << z;
     }
+}
+
+// The pile's cylinder 293 at step 32, landing at 2.6 m/s tilted on the terrain: its rim comes
+// 3.7 cm from one triangle and 4.9 cm from a bump's vertex 0.18 m away (pair routine). The
+// contact had one point, on the first: the redo along each face normal at the vertex put the
+// half-space routine's rim points over other triangles. The solver's impulse on that point spun
+// the cylinder and its rim by the vertex went 2.9 cm into the terrain within the step. Now the
+// pair routine's speculative point by the vertex is kept (collide_mesh_edges.cpp,
+// keepSpeculative). Tolerances set before measuring: within 2 cm of the vertex's witness
+// (7.745, 5.507), no more than 5 mm beyond its distance.
+TEST(TerrainTunnel, LandingCylinderGetsASpeculativePointByABumpVertex) {
+    const Shape field = HeightField::fromData(rollingTerrain());
+    const Transform pose{
+        Vec3(7.7845720041234232, 5.4907003680324795, 0.52029226646669469),
+        Quat(0.8221788589911081, 0.32699693274095154, 0.46255325076072595, -0.056030527543244377)
+            .normalized()};
+    ManifoldSet set;
+    collide(Cylinder{0.12, 0.1}, pose, field, Transform{}, 0.085, set);
+    bool byVertex = false;
+    for (int m = 0; m < set.count; ++m) {
+        const Manifold& manifold = set.manifolds[static_cast<std::size_t>(m)];
+        for (int k = 0; k < manifold.pointCount; ++k) {
+            const ContactPoint& c = manifold.points[static_cast<std::size_t>(k)];
+            byVertex =
+                byVertex || ((c.position - Vec3(7.745, 5.507, c.position.z())).norm() < 0.02 &&
+                             c.separation < 0.049 + 0.005);
+        }
+    }
+    EXPECT_TRUE(byVertex) << set.count << " manifolds";
 }
 
 }  // namespace
