@@ -153,9 +153,10 @@ void ForceElements::apply(SpringStore& springs, const DragStore& drag, BodyStore
     applied_ = springs.count() > springs.implicitCount || !drag.empty();
     if (!applied_)
         return;
-    saved_.resize(bodies.awake.size());
-    for (std::size_t k = 0; k < bodies.awake.size(); ++k)
-        saved_[k] = bodies.forces[bodies.awake[k]];
+    savedBodies_.assign(bodies.awake.begin(), bodies.awake.end());
+    saved_.resize(savedBodies_.size());
+    for (std::size_t k = 0; k < savedBodies_.size(); ++k)
+        saved_[k] = bodies.forces[savedBodies_[k]];
 
     for (std::uint32_t i = 0; i < springs.count(); ++i) {
         const SpringDef& def = springs.defs[i];
@@ -191,10 +192,10 @@ void ForceElements::apply(SpringStore& springs, const DragStore& drag, BodyStore
 void ForceElements::restore(BodyStore& bodies) {
     if (!applied_)
         return;
-    // The awake list cannot change between apply() and restore(): both sit around the
-    // velocity update.
-    for (std::size_t k = 0; k < bodies.awake.size(); ++k)
-        bodies.forces[bodies.awake[k]] = saved_[k];
+    // The bodies saved, not today's awake list: the soft step restores after the solve, and a
+    // touch may have woken bodies in between (ASan: the awake list outgrew saved_).
+    for (std::size_t k = 0; k < savedBodies_.size(); ++k)
+        bodies.forces[savedBodies_[k]] = saved_[k];
     applied_ = false;
 }
 

@@ -59,7 +59,8 @@ public:
     void restore(BodyStore& bodies);
 
 private:
-    std::vector<BodyForces> saved_;  ///< per awake body, in BodyStore::awake order
+    std::vector<std::uint32_t> savedBodies_;  ///< the bodies awake at apply()
+    std::vector<BodyForces> saved_;           ///< their forces then, in the same order
     bool applied_ = false;
 };
 
