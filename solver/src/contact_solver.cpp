@@ -155,15 +155,19 @@ Vec2 solveDiscRim(const DiscBlock& k, const Vec2& b, Real radius) {
 bool DiscBlock::set(const Mat2& k) {
     const Real mean = 0.5 * (k(0, 0) + k(1, 1));
     const Real half = 0.5 * (k(0, 0) - k(1, 1));
-    const Real radius = std::hypot(half, k(0, 1));
+    const Real radius = std::sqrt(half * half + k(0, 1) * k(0, 1));
     // Singular (a body that cannot turn about these axes): no rows.
     if (!(mean - radius > 1e-12 * mean)) {
         *this = DiscBlock{};
         return false;
     }
-    const Real angle = 0.5 * std::atan2(k(0, 1), half);  // of the larger moment's axis
-    const Real cs = std::cos(angle);
-    const Real sn = std::sin(angle);
+    // The larger moment's axis, (half + radius, k01) or, parallel to it, (k01, radius - half):
+    // each step takes the form whose terms do not cancel, so no trigonometry is needed. Its sign
+    // is free (the solve uses axes and axes' together).
+    const Vec2 major = half >= 0 ? Vec2(half + radius, k(0, 1)) : Vec2(k(0, 1), radius - half);
+    const Vec2 unit = radius > 0 ? Vec2(major / major.norm()) : Vec2::UnitX();  // any, if isotropic
+    const Real cs = unit.x();
+    const Real sn = unit.y();
     block = k;
     inverse = k.inverse();
     moments = Vec2(mean - radius, mean + radius);
