@@ -248,8 +248,28 @@ void SolveStage::holdAnchors(const BodyStore& bodies, const ContactManager& cont
     anchorPass_.run(solverBodies_, constraints, anchorDrifts_, pseudo_, context.inverseH, lengths);
 }
 
-// The rows' geometry at the positions the step ended on, and what each must correct (m): returns
-// the largest. The rows are copied and prepared once a correction is known to be needed.
+// A row's geometry at the positions the step ended on.
+SolveStage::ProjectedGeometry SolveStage::projectedGeometry(const BodyStore& bodies,
+                                                            const SpringStore& springs,
+                                                            std::size_t j) const {
+    const SpringRow& solved = springRows_[j];
+    const SpringDef& def = springs.defs[rowSpring_[j]];
+    const RowBodies& ends = rowBodies_[j];  // the bodies cannot change within a step
+    const Vec3 pA = anchorAt(bodies, ends.a, def.localAnchorA);
+    const Vec3 pB = ends.world ? def.localAnchorB : anchorAt(bodies, ends.b, def.localAnchorB);
+    const Vec3 d = pB - pA;
+    ProjectedGeometry row;
+    row.length = d.norm();
+    row.direction = row.length > 0 ? Vec3(d / row.length) : solved.direction;
+    row.rA = pA - bodies.motion[ends.a].center;
+    row.rB = ends.world ? Vec3::Zero() : Vec3(pB - bodies.motion[ends.b].center);
+    return row;
+}
+
+// What each row must correct at the positions the step ended on (m): returns the largest. Rows
+// whose scheme owns their error skip the geometry (length -1), which projectSprings() fills in
+// only when a correction is needed: most steps need none, and on the 40 x 40 net the anchors'
+// transforms were ~5 % of a step.
 Real SolveStage::projectionErrors(const BodyStore& bodies, const SpringStore& springs,
                                   const StepContext& context) {
     projectedGeometry_.resize(springRows_.size());
@@ -257,17 +277,19 @@ Real SolveStage::projectionErrors(const BodyStore& bodies, const SpringStore& sp
     Real worst = 0;
     for (std::size_t j = 0; j < springRows_.size(); ++j) {
         const SpringRow& solved = springRows_[j];
-        const SpringDef& def = springs.defs[rowSpring_[j]];
-        const RowBodies& ends = rowBodies_[j];  // the bodies cannot change within a step
         ProjectedGeometry& row = projectedGeometry_[j];
-        const Vec3 pA = anchorAt(bodies, ends.a, def.localAnchorA);
-        const Vec3 pB = ends.world ? def.localAnchorB : anchorAt(bodies, ends.b, def.localAnchorB);
-        const Vec3 d = pB - pA;
-        row.length = d.norm();
-        row.direction = row.length > 0 ? Vec3(d / row.length) : solved.direction;
-        row.rA = pA - bodies.motion[ends.a].center;
-        row.rB = ends.world ? Vec3::Zero() : Vec3(pB - bodies.motion[ends.b].center);
         const bool taut = !solved.tensionOnly || solved.impulse < 0;
+        projectionError_[j] = 0;
+        // A resolved element's turning and catch are the scheme's own second-order error
+        // (spring_row.h); correcting them made the net-10 sweep's error 2-3x larger at h =
+        // 1/240 ... 1/2000. A discrete-gradient thread's row is linearised at its end-of-step
+        // span already.
+        if ((solved.spectralRadius > 0 && !springRowUnresolved(solved, context.h)) ||
+            (solved.discreteGradient && taut)) {
+            row.length = -1;
+            continue;
+        }
+        row = projectedGeometry(bodies, springs, j);
         // A taut element: what the step's linearisation believed its length to be, against
         // the true one. A slack thread: whatever stretched it past its rest length without a
         // pull (contacts pushing its ends apart).
@@ -275,14 +297,6 @@ Real SolveStage::projectionErrors(const BodyStore& bodies, const SpringStore& sp
                           : std::max<Real>(0, row.length - solved.restLength);
         if (error <= kNegligibleStretch * solved.restLength)
             error = 0;  // rounding: not worth a factorisation
-        // A resolved element's turning and catch are the scheme's own second-order error
-        // (spring_row.h); correcting them made the net-10 sweep's error 2-3x larger at h =
-        // 1/240 ... 1/2000.
-        if (solved.spectralRadius > 0 && !springRowUnresolved(solved, context.h))
-            error = 0;
-        // A discrete-gradient thread's row is linearised at its end-of-step span already.
-        if (solved.discreteGradient && taut)
-            error = 0;
         projectionError_[j] = error;
         worst = std::max(worst, error);
     }
@@ -312,6 +326,8 @@ void SolveStage::projectSprings(BodyStore& bodies, const SpringStore& springs,
     projectedRows_.assign(springRows_.begin(), springRows_.end());
     for (std::size_t j = 0; j < projectedRows_.size(); ++j) {
         SpringRow& row = projectedRows_[j];
+        if (projectedGeometry_[j].length < 0)
+            projectedGeometry_[j] = projectedGeometry(bodies, springs, j);
         const ProjectedGeometry& geometry = projectedGeometry_[j];
         row.length = geometry.length;
         row.direction = geometry.direction;

@@ -82,8 +82,12 @@ private:
     /// Every awake body's displacement since the step began (into moved_), after a substep
     /// of length h.
     void measureDisplacements(const BodyStore& bodies, Real h);
-    /// projectSprings()'s rows' geometry at the new positions and their errors; returns the
-    /// largest (m).
+    struct ProjectedGeometry;
+    /// Row j's geometry at the new positions, for projectSprings().
+    ProjectedGeometry projectedGeometry(const BodyStore& bodies, const SpringStore& springs,
+                                        std::size_t j) const;
+    /// projectSprings()'s rows' errors at the new positions (and the geometry of those that may
+    /// have one); returns the largest (m).
     Real projectionErrors(const BodyStore& bodies, const SpringStore& springs,
                           const StepContext& context);
     /// Friction anchors (split impulse): this solve's drifts and the anchor pass on pseudo_.
