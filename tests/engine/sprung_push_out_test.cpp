@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <vector>
 
 #include "testkit/scenes.h"
 #include "tumble/lumped.h"
@@ -25,7 +24,7 @@ constexpr Real kRestSpeed = 0.01;
 // The net is dropped at 2 s from 3 m and lands within a second; the window starts 4 s after the
 // drop, when the pile (the last rain wave at 1 s) and the net have had time to settle, and ends
 // 10 s after it, past the 9 s the fault was seen to go on for.
-constexpr Real kDrop = 2;
+constexpr Real kDrop = testkit::PileUnderNet::kNetStep * kH;
 constexpr Real kWindowStart = kDrop + 4;
 constexpr Real kWindowEnd = kDrop + 10;
 
@@ -37,32 +36,16 @@ Real spherePeak(bool anchors) {
     def.solver.frictionAnchors = anchors;
     def.enableSleep = false;  // the motion itself, not an island that fell asleep
     World world(def);
-    const testkit::Rain rain{
-        .half = 1,
-        .material = Material{
-            .friction = 0.5, .density = 700, .spinningFriction = 0.002, .rollingFriction = 0.002}};
-    rain.addContainer(world);
-    std::vector<BodyId> spheres;
-    int created = 0;
+    testkit::PileUnderNet pile(world);
     Real peak = 0;
     for (int i = 0; i < static_cast<int>(kWindowEnd / kH); ++i) {
-        if (i % 30 == 0)
-            for (int k = 0; k < rain.perWave() && created < 60; ++k, ++created) {
-                const BodyId body = rain.addBody(world, created);
-                if (created % 4 == 0)  // Rain's shapes: spheres at every fourth index
-                    spheres.push_back(body);
-            }
-        if (i == static_cast<int>(kDrop / kH)) {
-            const Lumped net = createNet(world, testkit::captureNet(10, 0.2, Vec3(0, 0, 3)));
-            for (const BodyId node : net.nodes)
-                world.setDrag(node, Drag{.linear = world.massProperties(node).mass});
-        }
+        pile.feed(world, i);
         if (!world.step().ok())
             return -1;
         if ((i + 1) * kH < kWindowStart)
             continue;
-        for (const BodyId sphere : spheres)
-            peak = std::max(peak, world.linearVelocity(sphere).norm());
+        for (std::size_t k = 0; k < pile.bodies.size(); k += 4)  // Rain's spheres
+            peak = std::max(peak, world.linearVelocity(pile.bodies[k]).norm());
     }
     return peak;
 }

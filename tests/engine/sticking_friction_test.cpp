@@ -182,24 +182,12 @@ Real firstAllAsleep(bool anchors) {
     WorldDef def{.timeStep = 1.0 / 60};
     def.solver.frictionAnchors = anchors;
     World world(def);
-    const testkit::Rain rain{
-        .half = 1,
-        .material = Material{
-            .friction = 0.5, .density = 700, .spinningFriction = 0.002, .rollingFriction = 0.002}};
-    rain.addContainer(world);
-    int created = 0;
+    testkit::PileUnderNet pile(world);
     for (int i = 0; i < 12 * 60; ++i) {
-        if (i % 30 == 0)
-            for (int k = 0; k < rain.perWave() && created < 60; ++k, ++created)
-                rain.addBody(world, created);
-        if (i == 120) {
-            const Lumped net = createNet(world, testkit::captureNet(10, 0.2, Vec3(0, 0, 3)));
-            for (const BodyId node : net.nodes)
-                world.setDrag(node, Drag{.linear = world.massProperties(node).mass});
-        }
+        pile.feed(world, i);
         if (!world.step().ok())
             return -2;
-        if (i > 120 && world.awakeBodyCount() == 0)
+        if (i > testkit::PileUnderNet::kNetStep && world.awakeBodyCount() == 0)
             return (i + 1) * def.timeStep;
     }
     return -1;
@@ -221,8 +209,7 @@ Real netOnBoxesAsleep(bool anchors, const Vec3& offset) {
     WorldDef def{.timeStep = 1.0 / 60};
     def.solver.frictionAnchors = anchors;
     World world(def);
-    const Material rain{
-        .friction = 0.5, .density = 700, .spinningFriction = 0.002, .rollingFriction = 0.002};
+    const Material rain = testkit::soakMaterial();
     testkit::addGround(world, rain);
     for (int i = 0; i < 9; ++i)
         testkit::addBox(world, Vec3(0.4 * (i % 3 - 1), 0.4 * (i / 3 - 1), 0.1),
