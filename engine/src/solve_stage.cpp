@@ -73,6 +73,7 @@ std::span<ContactConstraint> SolveStage::buildConstraints(const BodyStore& bodie
         c.rollingFriction = std::max(materialA.rollingFriction, materialB.rollingFriction);
         c.angularImpulse = contact.angularImpulse;
         c.pointCount = contact.manifold.pointCount;
+        c.pushOut = true;  // run() clears it for the contacts of sprung bodies
         // The solver builds its tangent basis from the normal; cached friction is kept in world
         // coordinates so a turning basis does not scramble it.
         c.tangents = frictionBasis(c.normal);
@@ -162,6 +163,11 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
 
     const std::span<ContactConstraint> constraints =
         buildConstraints(bodies, shapes, contacts, context);
+    if (settings.stabilisation == Stabilisation::SplitImpulse) {
+        markSprung(bodies, springs);
+        for (ContactConstraint& c : constraints)
+            c.pushOut = sprung_[c.bodyA] == 0 && sprung_[c.bodyB] == 0;
+    }
     buildSpringRows(
         springs, bodies, context.h,
         [&](std::uint32_t index) {
@@ -180,7 +186,7 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
     const bool anchored =
         settings.frictionAnchors && settings.stabilisation == Stabilisation::SplitImpulse;
     if (anchored)
-        holdAnchors(bodies, contacts, springs, constraints, context,
+        holdAnchors(bodies, contacts, constraints, context,
                     AnchorLengths::of(settings.slop, contacts.contactMargin));
 
     brokenJoints_.clear();
@@ -203,6 +209,23 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
     return stats;
 }
 
+// Which solver bodies a spring ends on (awake dynamic ones: not a kinematic platform a spring
+// hangs from).
+void SolveStage::markSprung(const BodyStore& bodies, const SpringStore& springs) {
+    sprung_.assign(solverBodies_.size(), 0);
+    const auto mark = [&](BodyId body) {
+        if (body.isNull())
+            return;
+        const std::uint32_t index = bodies.indexOf(body);
+        if (bodies.isAwakeDynamic(index))
+            sprung_[solverBodyIndex(bodies, index)] = 1;
+    };
+    for (const SpringDef& def : springs.defs) {
+        mark(def.bodyA);
+        mark(def.bodyB);
+    }
+}
+
 // The anchors' drifts are those of the poses the step starts from, as the constraints' points.
 //
 // A manifold whose friction reached its limit in this step's velocity solve slides: it has no
@@ -218,23 +241,10 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
 // half its weight, and 0.08 m/s a step: the soak's net kept jittering at that speed with anchors
 // on and held its pile (one island, 1,382 bodies at 1,000) awake for good.
 void SolveStage::holdAnchors(const BodyStore& bodies, const ContactManager& contacts,
-                             const SpringStore& springs,
                              std::span<const ContactConstraint> constraints,
                              const StepContext& context, const AnchorLengths& lengths) {
     anchors_.beginSolve();
     anchorDrifts_.assign(4 * constraints.size(), Vec3::Zero());
-    sprung_.assign(solverBodies_.size(), 0);
-    const auto markSprung = [&](BodyId body) {
-        if (body.isNull())
-            return;
-        const std::uint32_t index = bodies.indexOf(body);
-        if (bodies.isAwakeDynamic(index))  // not a kinematic platform a spring hangs from
-            sprung_[solverBodyIndex(bodies, index)] = 1;
-    };
-    for (const SpringDef& def : springs.defs) {
-        markSprung(def.bodyA);
-        markSprung(def.bodyB);
-    }
     for (std::size_t j = 0; j < constraints.size(); ++j) {
         const ContactConstraint& c = constraints[j];
         if (sprung_[c.bodyA] != 0 || sprung_[c.bodyB] != 0 || AnchorTable::slips(c))

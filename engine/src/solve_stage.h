@@ -90,11 +90,15 @@ private:
     /// have one); returns the largest (m).
     Real projectionErrors(const BodyStore& bodies, const SpringStore& springs,
                           const StepContext& context);
+    /// sprung_ for this step's solver bodies (split impulse): their contacts push out no depth
+    /// in the biased sweeps (ContactConstraint::pushOut, sprung_push_out.h) and hold no anchors.
+    void markSprung(const BodyStore& bodies, const SpringStore& springs);
     /// Friction anchors (split impulse): this solve's drifts and the anchor pass on pseudo_.
-    /// Contacts of a body a spring holds are left out (see the definition).
+    /// Contacts of a body a spring holds (sprung_, marked by run()) are left out (see the
+    /// definition).
     void holdAnchors(const BodyStore& bodies, const ContactManager& contacts,
-                     const SpringStore& springs, std::span<const ContactConstraint> constraints,
-                     const StepContext& context, const AnchorLengths& lengths);
+                     std::span<const ContactConstraint> constraints, const StepContext& context,
+                     const AnchorLengths& lengths);
 
     ConstraintSolver solver_;
     std::vector<SolverBody> solverBodies_;

@@ -24,7 +24,9 @@ SolverStats ConstraintSolver::solve(std::span<SolverBody> bodies,
     const Real velocityBias = split ? 0 : bias;  // what stays in the real velocity
     SolverStats stats;
     profile_.prepare = timed([&] {
-        stats.deepestPenetration = prepare(bodies, constraints, springs, joints, h, settings);
+        const Real held = split ? sprungPushOut_.hold(constraints, settings.slop) : 0;
+        stats.deepestPenetration =
+            std::max(held, prepare(bodies, constraints, springs, joints, h, settings));
         jointBias_ = velocityBias;
     });
     profile_.velocity = timed([&] {
@@ -39,9 +41,10 @@ SolverStats ConstraintSolver::solve(std::span<SolverBody> bodies,
             contacts_.residual(bodies, constraints, settings, inverseH, velocityBias);
     });
     profile_.positions = timed([&] {
-        if (split && (!joints.empty() || segmentPositions_))
-            correctPositions(bodies, pseudo, inverseH, settings);
+        if (split && (!joints.empty() || segmentPositions_ || !sprungPushOut_.empty()))
+            correctPositions(bodies, constraints, pseudo, inverseH, settings);
     });
+    sprungPushOut_.restore(constraints);
     return stats;
 }
 
@@ -108,23 +111,20 @@ void ConstraintSolver::relax(std::span<SolverBody> bodies, std::span<ContactCons
 }
 
 void ConstraintSolver::correctPositions(std::span<const SolverBody> bodies,
+                                        std::span<const ContactConstraint> constraints,
                                         std::vector<PseudoVelocity>& pseudo, Real inverseH,
                                         const SolverSettings& settings) {
-    pseudoBodies_.assign(bodies.begin(), bodies.end());
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-        pseudoBodies_[i].linearVelocity = pseudo[i].linear;
-        pseudoBodies_[i].angularVelocity = pseudo[i].angular;
-    }
+    loadPseudoBodies(bodies, pseudo, pseudoBodies_);
     if (!joints_.empty())
         solveJointPositions(pseudoBodies_, joints_, settings.splitImpulseFactor, inverseH,
                             settings.iterations);
+    if (!sprungPushOut_.empty())
+        sprungPushOut_.solve(pseudoBodies_, constraints, settings.splitImpulseFactor, inverseH,
+                             settings.slop, settings.iterations);
     if (segmentPositions_)
         solveSegmentPositions(pseudoBodies_, segments_, settings.splitImpulseFactor, inverseH,
                               settings.slop, settings.iterations);
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-        pseudo[i].linear = pseudoBodies_[i].linearVelocity;
-        pseudo[i].angular = pseudoBodies_[i].angularVelocity;
-    }
+    storePseudoBodies(pseudoBodies_, pseudo);
 }
 
 int ConstraintSolver::runSweeps(std::span<SolverBody> bodies,

@@ -127,11 +127,7 @@ void FrictionAnchorPass::run(std::span<const SolverBody> bodies,
             active_.push_back(static_cast<std::uint32_t>(j));
     if (active_.empty())
         return;
-    bodies_.assign(bodies.begin(), bodies.end());
-    for (std::size_t i = 0; i < bodies_.size(); ++i) {
-        bodies_[i].linearVelocity = pseudo[i].linear;
-        bodies_[i].angularVelocity = pseudo[i].angular;
-    }
+    loadPseudoBodies(bodies, pseudo, bodies_);
     rows_.assign(4 * active_.size(), Vec3::Zero());
     inverses_.resize(active_.size());
     for (std::size_t k = 0; k < active_.size(); ++k) {
@@ -152,10 +148,7 @@ void FrictionAnchorPass::run(std::span<const SolverBody> bodies,
                 holdNormals(a, b, c, std::span(rows_).subspan(4 * k, c.pointCount), inverses_[k]);
         }
     }
-    for (std::size_t i = 0; i < bodies_.size(); ++i) {
-        pseudo[i].linear = bodies_[i].linearVelocity;
-        pseudo[i].angular = bodies_[i].angularVelocity;
-    }
+    storePseudoBodies(bodies_, pseudo);
 }
 
 // Minimise sum |f_i|^2 / w_i (w_i = lambda_n,i) subject to sum f_i = F and

@@ -143,6 +143,27 @@ BodyId Rain::addBody(World& world, int index) const {
     return body;
 }
 
+Material soakMaterial() {
+    return Material{
+        .friction = 0.5, .density = 700, .spinningFriction = 0.002, .rollingFriction = 0.002};
+}
+
+PileUnderNet::PileUnderNet(World& world) {
+    rain.addContainer(world);
+}
+
+void PileUnderNet::feed(World& world, int step) {
+    constexpr int kBodies = 60;
+    if (step % 30 == 0)
+        for (int k = 0; k < rain.perWave() && bodies.size() < kBodies; ++k)
+            bodies.push_back(rain.addBody(world, static_cast<int>(bodies.size())));
+    if (step == kNetStep) {
+        net = createNet(world, captureNet(10, 0.2, Vec3(0, 0, 3)));
+        for (const BodyId node : net.nodes)
+            world.setDrag(node, Drag{.linear = world.massProperties(node).mass});
+    }
+}
+
 NetDef captureNet(int nodesPerSide, Real meshSize, const Vec3& center) {
     NetDef net;
     net.rows = nodesPerSide;

@@ -83,6 +83,24 @@ struct Rain {
     BodyId addBody(World& world, int index) const;
 };
 
+/// The soak's material of the rain's bodies: friction 0.5, 700 kg/m^3, spinning and rolling
+/// friction 2 mm.
+Material soakMaterial();
+
+/// The soak's pile under a net, small: 60 bodies of the rain, of soakMaterial(), in a 2 x 2 m
+/// box, a wave every 30 steps, and a captureNet(10, 0.2) with the soak's drag (Drag::linear =
+/// the node's mass) dropped on them from 3 m at step kNetStep.
+struct PileUnderNet {
+    static constexpr int kNetStep = 120;
+    Rain rain{.half = 1, .material = soakMaterial()};
+    std::vector<BodyId> bodies;  ///< the rain's, in the order made
+    Lumped net;
+    /// Adds the container.
+    explicit PileUnderNet(World& world);
+    /// Adds what step `step` (counting from 0) brings; call before taking it.
+    void feed(World& world, int step);
+};
+
 /// A square net of `nodesPerSide`^2 colliding nodes on tension-only threads (lumped.h), flat at
 /// `center`, `meshSize` apart (m), with the soak's nodes (20 g, 3 cm), corners (0.5 kg) and
 /// threads (axial rigidity 2000 N, damping 0.5); change the returned definition for others.

@@ -9,7 +9,8 @@
 ///   relax      split impulse: `relaxIterations` sweeps without the bias; the difference is
 ///              the pseudo-velocity
 ///   residual   the contacts' complementarity residual after the sweeps
-///   positions  split impulse's position pass of the joints on the pseudo-velocities
+///   positions  split impulse's position pass of the joints, the thread contacts and the
+///              contacts without pushOut on the pseudo-velocities
 ///
 /// The rows' own derivations are with them: contact_solver.h, spring_row.h and spring_block.h,
 /// joint_row.h. Deterministic: every row kind is solved in array order, in the same order in
@@ -25,6 +26,7 @@
 #include "tumble/solver/solver_body.h"
 #include "tumble/solver/spring_block.h"
 #include "tumble/solver/spring_row.h"
+#include "tumble/solver/sprung_push_out.h"
 
 namespace tumble {
 
@@ -63,10 +65,12 @@ private:
     int runSweeps(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                   std::span<SpringRow> springs, const SolverSettings& settings, Real inverseH,
                   Real bias, int sweeps);
-    /// Split impulse's position pass for the joints (solveJointPositions) and the thread contacts
-    /// (solveSegmentPositions) on `pseudo`.
-    void correctPositions(std::span<const SolverBody> bodies, std::vector<PseudoVelocity>& pseudo,
-                          Real inverseH, const SolverSettings& settings);
+    /// Split impulse's position pass for the joints (solveJointPositions), the contacts without
+    /// pushOut (SprungPushOut) and the thread contacts (solveSegmentPositions) on `pseudo`.
+    void correctPositions(std::span<const SolverBody> bodies,
+                          std::span<const ContactConstraint> constraints,
+                          std::vector<PseudoVelocity>& pseudo, Real inverseH,
+                          const SolverSettings& settings);
 
     ContactSolver contacts_;
     SolverProfile profile_;
@@ -81,6 +85,7 @@ private:
     std::vector<SpringRow> jointBlockRows_;
     bool directJoints_ = false;             ///< this step's ball joints go through jointBlock_
     std::vector<SolverBody> pseudoBodies_;  ///< the joints' position pass works on these
+    SprungPushOut sprungPushOut_;           ///< the contacts without pushOut, this step
 };
 
 }  // namespace tumble

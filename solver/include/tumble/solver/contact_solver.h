@@ -141,6 +141,10 @@ struct ContactConstraint {
     /// warm start in, result out.
     Vec3 angularImpulse = Vec3::Zero();
     int pointCount = 0;
+    /// Split impulse: false leaves the depth beyond the slop out of the biased sweeps; it is
+    /// pushed out afterwards on the pseudo-velocities alone (sprung_push_out.h). For the
+    /// contacts of bodies that springs end on.
+    bool pushOut = true;
 
     // Filled by prepare().
     /// Group whose normal rows NormalIslands solves together, or NormalIslands::kNone: the
@@ -162,6 +166,13 @@ struct PseudoVelocity {
     Vec3 linear = Vec3::Zero();
     Vec3 angular = Vec3::Zero();
 };
+
+/// `bodies` with their velocities replaced by `pseudo`'s (the same order) into `out`: the
+/// position passes solve on the pseudo-velocities as the sweeps do on the velocities.
+void loadPseudoBodies(std::span<const SolverBody> bodies, std::span<const PseudoVelocity> pseudo,
+                      std::vector<SolverBody>& out);
+/// A position pass's velocities back into `pseudo`.
+void storePseudoBodies(std::span<const SolverBody> bodies, std::span<PseudoVelocity> pseudo);
 
 /// How far a body has moved since the step began (the soft step's separations follow it).
 struct BodyDisplacement {
