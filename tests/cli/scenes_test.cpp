@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <map>
@@ -115,6 +116,35 @@ TEST(Scenes, DustbinMeshCatchesTheNetOnItsRim) {
     const Sample middle = paths.at("net[10][10]").back();
     EXPECT_LT(std::hypot(middle.x, middle.y), 0.3) << "the middle is over the opening";
     EXPECT_GT(middle.z, 0.5) << "held by the rim";
+}
+
+TEST(Scenes, DustbinMeshNetComesToRestOnTheBin) {
+    // Tolerance, written before measuring (issue 26's target): the net caught on the rim settles,
+    // its median node speed below 5 mm/s after 2 s. Measured on main before the thread contacts'
+    // push-out was capped (segment_contact_row.cpp): 18.6 mm/s, the skirt on the wall moving.
+    const fs::path dir = scratch("dustbin_mesh_rest");
+    const fs::path csv = dir / "net.csv";
+    std::string nodes;
+    for (int i = 0; i < 20; ++i) {
+        for (int j = 0; j < 20; ++j) {
+            if (!nodes.empty())
+                nodes += ',';
+            nodes += "net[" + std::to_string(i) + "][" + std::to_string(j) + "]";
+        }
+    }
+    const Outcome o = tumbleRun({"run", "dustbin-mesh", "--time", "2", "--quiet", "--record",
+                                 csv.string(), "--record-rate", "2", "--record-bodies", nodes});
+    ASSERT_EQ(o.status, 0) << o.err;
+    const auto paths = readTrajectories(csv);
+    ASSERT_EQ(paths.size(), 400u);
+    std::vector<double> speeds;
+    for (const auto& [name, samples] : paths) {
+        const Sample& end = samples.back();
+        EXPECT_NEAR(end.t, 2.0, 1e-9) << name;
+        speeds.push_back(std::hypot(end.vx, end.vy, end.vz));
+    }
+    std::nth_element(speeds.begin(), speeds.begin() + speeds.size() / 2, speeds.end());
+    EXPECT_LT(speeds[speeds.size() / 2], 5e-3);
 }
 
 TEST(Scenes, StringStrikeReachesTheFreeEndAfterTheWaveTravelTime) {
