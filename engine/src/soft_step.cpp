@@ -1,4 +1,6 @@
 // The soft step (SolverSettings::softSubsteps; docs/ARCHITECTURE.md, "The soft step").
+#include <algorithm>
+
 #include "integrator.h"
 #include "solve_stage.h"
 #include "tumble/core/timed.h"
@@ -17,9 +19,13 @@ SolverStats SolveStage::runSoft(BodyStore& bodies, const ShapeStore& shapes,
     rows.tolerance = 0;
     SolverStats stats;
     std::span<ContactConstraint> constraints;
+    const bool anchored = settings.frictionAnchors;
+    const AnchorLengths lengths = AnchorLengths::of(settings.slop, contacts.contactMargin);
     softProfile_.prepare = timed([&] {
         loadSolverBodies(bodies, context.h / n);
         constraints = buildConstraints(bodies, shapes, contacts, context);
+        if (anchored)
+            seatSoftAnchors(bodies, contacts, constraints, lengths);
         // The cache holds the step's sums: each substep starts from its share of them.
         const Real share = Real(1) / n;
         for (ContactConstraint& c : constraints) {
@@ -44,8 +50,52 @@ SolverStats SolveStage::runSoft(BodyStore& bodies, const ShapeStore& shapes,
     });
     softProfile_.velocity = timed([&] { softSubsteps(bodies, constraints, context, rows); });
     stats.iterations = n;
-    storeImpulses(contacts, constraints, false);
+    if (anchored)
+        holdSoftAnchors(bodies, contacts, constraints, context, lengths);
+    storeImpulses(contacts, constraints, anchored);
     return stats;
+}
+
+// The anchors are kept or seated where the step starts, as the default step's (holdAnchors):
+// AnchorTable compares them with the manifold's points, collided at these poses.
+void SolveStage::seatSoftAnchors(const BodyStore& bodies, const ContactManager& contacts,
+                                 std::span<const ContactConstraint> constraints,
+                                 const AnchorLengths& lengths) {
+    anchors_.beginSolve();
+    anchorDrifts_.assign(4 * constraints.size(), Vec3::Zero());
+    for (std::size_t j = 0; j < constraints.size(); ++j) {
+        const std::uint32_t slot = constraintContact_[j];
+        const Contact& contact = contacts.contact(slot);
+        anchors_.drifts(slot, contact, bodies.motion[bodies.indexOf(contact.bodyA)],
+                        bodies.motion[bodies.indexOf(contact.bodyB)], 0, constraints[j], lengths,
+                        &anchorDrifts_[4 * j]);
+    }
+}
+
+// Once per step, after the substeps: each sticking manifold's drift where the substeps left its
+// bodies, pulled back by the default step's anchor pass through one displacement. The substeps'
+// friction rows hold velocities, as Box2D v3's and Jolt's (neither holds places): a point
+// sticking on a turning platform still falls behind by omega^2 r hs^2 / 2 a substep, n times
+// less a step than the default step's, but never undone. A manifold whose summed friction
+// reached its limit slides and is left out (release() seats it afresh when it sticks again).
+void SolveStage::holdSoftAnchors(BodyStore& bodies, const ContactManager& contacts,
+                                 std::span<const ContactConstraint> constraints,
+                                 const StepContext& context, const AnchorLengths& lengths) {
+    for (std::size_t j = 0; j < constraints.size(); ++j) {
+        const ContactConstraint& c = constraints[j];
+        Vec3* drifts = &anchorDrifts_[4 * j];
+        if (AnchorTable::slips(c)) {
+            std::fill(drifts, drifts + 4, Vec3::Zero());
+            continue;
+        }
+        const Contact& contact = contacts.contact(constraintContact_[j]);
+        anchors_.driftsAt(constraintContact_[j], bodies.motion[bodies.indexOf(contact.bodyA)],
+                          bodies.motion[bodies.indexOf(contact.bodyB)], c, drifts);
+    }
+    pseudo_.assign(solverBodies_.size(), PseudoVelocity{});
+    anchorPass_.run(solverBodies_, constraints, anchorDrifts_, pseudo_, context.inverseH, lengths);
+    displaceBodies(bodies, std::span<const PseudoVelocity>(pseudo_).subspan(1), context.h);
+    pseudo_.clear();
 }
 
 // Per substep, as Box2D v3's solver stages: velocities (gravity at h / n), the warm start (the
