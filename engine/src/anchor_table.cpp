@@ -81,16 +81,6 @@ void AnchorTable::drifts(std::uint32_t slot, const Contact& contact, const BodyM
     }
 }
 
-void AnchorTable::driftsAt(std::uint32_t slot, const BodyMotion& a, const BodyMotion& b,
-                           const ContactConstraint& c, Vec3* drifts) const {
-    const Entry& entry = entries_[slot];
-    for (int i = 0; i < c.pointCount; ++i) {
-        const Vec3 onA = a.center + a.orientation * entry.onA[i];
-        const Vec3 onB = b.center + b.orientation * entry.onB[i];
-        drifts[i] = onPlane(onB - onA, c.normal);
-    }
-}
-
 // The patch slips as a whole when its friction reaches kSlipShare of its Coulomb limit (a point
 // the normal block left unloaded is at its zero limit while the others stick).
 bool AnchorTable::slips(const ContactConstraint& c) {

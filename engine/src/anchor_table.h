@@ -31,12 +31,6 @@ public:
     void drifts(std::uint32_t slot, const Contact& contact, const BodyMotion& a,
                 const BodyMotion& b, Real h, const ContactConstraint& c,
                 const AnchorLengths& lengths, Vec3* drifts);
-    /// The soft step's drifts: B's anchor - A's on the tangent plane (m, world) at the poses
-    /// `a` and `b` stand at now, for the anchors drifts() kept or seated in this solve, into
-    /// drifts[0 .. c.pointCount). The substeps moved the bodies, so the drift is measured, not
-    /// predicted (no bend).
-    void driftsAt(std::uint32_t slot, const BodyMotion& a, const BodyMotion& b,
-                  const ContactConstraint& c, Vec3* drifts) const;
     /// After the solve: a manifold whose friction reached its Coulomb limit slips as a whole,
     /// and its anchors are seated afresh next step.
     void release(std::uint32_t slot, const ContactConstraint& c);

@@ -25,7 +25,7 @@ SolverStats SolveStage::runSoft(BodyStore& bodies, const ShapeStore& shapes,
         loadSolverBodies(bodies, context.h / n);
         constraints = buildConstraints(bodies, shapes, contacts, context);
         if (anchored)
-            seatSoftAnchors(bodies, contacts, constraints, lengths);
+            seatSoftAnchors(bodies, contacts, constraints, context, lengths);
         // The cache holds the step's sums: each substep starts from its share of them.
         const Real share = Real(1) / n;
         for (ContactConstraint& c : constraints) {
@@ -51,46 +51,59 @@ SolverStats SolveStage::runSoft(BodyStore& bodies, const ShapeStore& shapes,
     softProfile_.velocity = timed([&] { softSubsteps(bodies, constraints, context, rows); });
     stats.iterations = n;
     if (anchored)
-        holdSoftAnchors(bodies, contacts, constraints, context, lengths);
+        holdSoftAnchors(bodies, constraints, context, lengths);
     storeImpulses(contacts, constraints, anchored);
     return stats;
 }
 
-// The anchors are kept or seated where the step starts, as the default step's (holdAnchors):
-// AnchorTable compares them with the manifold's points, collided at these poses.
+// The anchors' drifts as the default step's (holdAnchors): at the step's start, where the
+// manifold's points were collided, plus the bend of the points' paths over the step, plus what
+// the substeps slid them by (addSoftSlips). The substeps' friction rows hold velocities on the
+// levers of the step's start, as Box2D v3's and Jolt's (neither holds places), so sticking
+// points still stray (without anchors the slab's cube of SceneSolver.FrictionAnchorsFromTheFile...
+// crept 36 mm in 2 s at 3 x 45). Measured from the anchors' places after the substeps instead,
+// the drift held the cycloid along which a rolling ball's material points leave its contact,
+// R theta^3 / 6 a step, and the pass slowed validate's rolling-resistance ball on its slope by
+// 1.8e-3 (limit 1e-6).
 void SolveStage::seatSoftAnchors(const BodyStore& bodies, const ContactManager& contacts,
                                  std::span<const ContactConstraint> constraints,
-                                 const AnchorLengths& lengths) {
+                                 const StepContext& context, const AnchorLengths& lengths) {
     anchors_.beginSolve();
     anchorDrifts_.assign(4 * constraints.size(), Vec3::Zero());
     for (std::size_t j = 0; j < constraints.size(); ++j) {
         const std::uint32_t slot = constraintContact_[j];
         const Contact& contact = contacts.contact(slot);
         anchors_.drifts(slot, contact, bodies.motion[bodies.indexOf(contact.bodyA)],
-                        bodies.motion[bodies.indexOf(contact.bodyB)], 0, constraints[j], lengths,
-                        &anchorDrifts_[4 * j]);
+                        bodies.motion[bodies.indexOf(contact.bodyB)], context.h, constraints[j],
+                        lengths, &anchorDrifts_[4 * j]);
     }
 }
 
-// Once per step, after the substeps: each sticking manifold's drift where the substeps left its
-// bodies, pulled back by the default step's anchor pass through one displacement. The substeps'
-// friction rows hold velocities, as Box2D v3's and Jolt's (neither holds places): a point
-// sticking on a turning platform still falls behind by omega^2 r hs^2 / 2 a substep, n times
-// less a step than the default step's, but never undone. A manifold whose summed friction
-// reached its limit slides and is left out (release() seats it afresh when it sticks again).
-void SolveStage::holdSoftAnchors(BodyStore& bodies, const ContactManager& contacts,
-                                 std::span<const ContactConstraint> constraints,
-                                 const StepContext& context, const AnchorLengths& lengths) {
+// What the substep's velocities, those the positions move with, slide each point by on the
+// levers of the step's start (m): the soft rows' one iteration a substep leaves some slip that
+// the default step's sweeps do not, and the drifts are to hold it too. Not the anchors' places
+// after the substeps: those part along the cycloid of a rolling ball's material points,
+// R theta^3 / 6, which no slip made (see seatSoftAnchors).
+void SolveStage::addSoftSlips(std::span<const ContactConstraint> constraints, Real h) {
     for (std::size_t j = 0; j < constraints.size(); ++j) {
         const ContactConstraint& c = constraints[j];
-        Vec3* drifts = &anchorDrifts_[4 * j];
-        if (AnchorTable::slips(c)) {
-            std::fill(drifts, drifts + 4, Vec3::Zero());
-            continue;
+        const SolverBody& a = solverBodies_[c.bodyA];
+        const SolverBody& b = solverBodies_[c.bodyB];
+        for (int i = 0; i < c.pointCount; ++i) {
+            const Vec3 v = b.velocityAt(c.points[i].rB) - a.velocityAt(c.points[i].rA);
+            anchorDrifts_[4 * j + i] += h * (v - v.dot(c.normal) * c.normal);
         }
-        const Contact& contact = contacts.contact(constraintContact_[j]);
-        anchors_.driftsAt(constraintContact_[j], bodies.motion[bodies.indexOf(contact.bodyA)],
-                          bodies.motion[bodies.indexOf(contact.bodyB)], c, drifts);
+    }
+}
+
+// Once a step, after the substeps, through one displacement: the default step's anchor pass,
+// whose pseudo-velocities move positions only. A manifold whose summed friction reached its
+// limit slides and is left out (release() seats it afresh when it sticks again).
+void SolveStage::holdSoftAnchors(BodyStore& bodies, std::span<const ContactConstraint> constraints,
+                                 const StepContext& context, const AnchorLengths& lengths) {
+    for (std::size_t j = 0; j < constraints.size(); ++j) {
+        if (AnchorTable::slips(constraints[j]))
+            std::fill_n(&anchorDrifts_[4 * j], 4, Vec3::Zero());
     }
     pseudo_.assign(solverBodies_.size(), PseudoVelocity{});
     anchorPass_.run(solverBodies_, constraints, anchorDrifts_, pseudo_, context.inverseH, lengths);
@@ -141,6 +154,8 @@ void SolveStage::softSubsteps(BodyStore& bodies, std::span<ContactConstraint> co
         solver.softTargets(constraints, moved_, soft, sub.inverseH, false);
         solver.softSweep(solverBodies_, constraints, settings, sub.inverseH, &soft);
         storeVelocities(bodies);
+        if (settings.frictionAnchors)
+            addSoftSlips(constraints, sub.h);
         integratePositions(bodies, {}, sub);
         measureDisplacements(bodies, sub.h);
         solver.softTargets(constraints, moved_, soft, sub.inverseH, k == n - 1);
