@@ -70,13 +70,8 @@ void SolveStage::seatSoftAnchors(const BodyStore& bodies, const ContactManager& 
                                  const StepContext& context, const AnchorLengths& lengths) {
     anchors_.beginSolve();
     anchorDrifts_.assign(4 * constraints.size(), Vec3::Zero());
-    for (std::size_t j = 0; j < constraints.size(); ++j) {
-        const std::uint32_t slot = constraintContact_[j];
-        const Contact& contact = contacts.contact(slot);
-        anchors_.drifts(slot, contact, bodies.motion[bodies.indexOf(contact.bodyA)],
-                        bodies.motion[bodies.indexOf(contact.bodyB)], context.h, constraints[j],
-                        lengths, &anchorDrifts_[4 * j]);
-    }
+    for (std::size_t j = 0; j < constraints.size(); ++j)
+        anchorDrift(bodies, contacts, j, constraints[j], context.h, lengths);
 }
 
 // What the substep's velocities, those the positions move with, slide each point by on the
