@@ -1,4 +1,6 @@
 // The soft step (SolverSettings::softSubsteps; docs/ARCHITECTURE.md, "The soft step").
+#include <algorithm>
+
 #include "integrator.h"
 #include "solve_stage.h"
 #include "tumble/core/timed.h"
@@ -17,9 +19,13 @@ SolverStats SolveStage::runSoft(BodyStore& bodies, const ShapeStore& shapes,
     rows.tolerance = 0;
     SolverStats stats;
     std::span<ContactConstraint> constraints;
+    const bool anchored = settings.frictionAnchors;
+    const AnchorLengths lengths = AnchorLengths::of(settings.slop, contacts.contactMargin);
     softProfile_.prepare = timed([&] {
         loadSolverBodies(bodies, context.h / n);
         constraints = buildConstraints(bodies, shapes, contacts, context);
+        if (anchored)
+            seatSoftAnchors(bodies, contacts, constraints, context, lengths);
         // The cache holds the step's sums: each substep starts from its share of them.
         const Real share = Real(1) / n;
         for (ContactConstraint& c : constraints) {
@@ -44,8 +50,60 @@ SolverStats SolveStage::runSoft(BodyStore& bodies, const ShapeStore& shapes,
     });
     softProfile_.velocity = timed([&] { softSubsteps(bodies, constraints, context, rows); });
     stats.iterations = n;
-    storeImpulses(contacts, constraints, false);
+    if (anchored)
+        holdSoftAnchors(bodies, constraints, context, lengths);
+    storeImpulses(contacts, constraints, anchored);
     return stats;
+}
+
+// The anchors' drifts as the default step's (holdAnchors): at the step's start, where the
+// manifold's points were collided, plus the bend of the points' paths over the step, plus what
+// the substeps slid them by (addSoftSlips). The substeps' friction rows hold velocities on the
+// levers of the step's start, as Box2D v3's and Jolt's (neither holds places), so sticking
+// points still stray (without anchors the slab's cube of SceneSolver.FrictionAnchorsFromTheFile...
+// crept 36 mm in 2 s at 3 x 45). Measured from the anchors' places after the substeps instead,
+// the drift held the cycloid along which a rolling ball's material points leave its contact,
+// R theta^3 / 6 a step, and the pass slowed validate's rolling-resistance ball on its slope by
+// 1.8e-3 (limit 1e-6).
+void SolveStage::seatSoftAnchors(const BodyStore& bodies, const ContactManager& contacts,
+                                 std::span<const ContactConstraint> constraints,
+                                 const StepContext& context, const AnchorLengths& lengths) {
+    anchors_.beginSolve();
+    anchorDrifts_.assign(4 * constraints.size(), Vec3::Zero());
+    for (std::size_t j = 0; j < constraints.size(); ++j)
+        anchorDrift(bodies, contacts, j, constraints[j], context.h, lengths);
+}
+
+// What the substep's velocities, those the positions move with, slide each point by on the
+// levers of the step's start (m): the soft rows' one iteration a substep leaves some slip that
+// the default step's sweeps do not, and the drifts are to hold it too. Not the anchors' places
+// after the substeps: those part along the cycloid of a rolling ball's material points,
+// R theta^3 / 6, which no slip made (see seatSoftAnchors).
+void SolveStage::addSoftSlips(std::span<const ContactConstraint> constraints, Real h) {
+    for (std::size_t j = 0; j < constraints.size(); ++j) {
+        const ContactConstraint& c = constraints[j];
+        const SolverBody& a = solverBodies_[c.bodyA];
+        const SolverBody& b = solverBodies_[c.bodyB];
+        for (int i = 0; i < c.pointCount; ++i) {
+            const Vec3 v = b.velocityAt(c.points[i].rB) - a.velocityAt(c.points[i].rA);
+            anchorDrifts_[4 * j + i] += h * (v - v.dot(c.normal) * c.normal);
+        }
+    }
+}
+
+// Once a step, after the substeps, through one displacement: the default step's anchor pass,
+// whose pseudo-velocities move positions only. A manifold whose summed friction reached its
+// limit slides and is left out (release() seats it afresh when it sticks again).
+void SolveStage::holdSoftAnchors(BodyStore& bodies, std::span<const ContactConstraint> constraints,
+                                 const StepContext& context, const AnchorLengths& lengths) {
+    for (std::size_t j = 0; j < constraints.size(); ++j) {
+        if (AnchorTable::slips(constraints[j]))
+            std::fill_n(&anchorDrifts_[4 * j], 4, Vec3::Zero());
+    }
+    pseudo_.assign(solverBodies_.size(), PseudoVelocity{});
+    anchorPass_.run(solverBodies_, constraints, anchorDrifts_, pseudo_, context.inverseH, lengths);
+    displaceBodies(bodies, std::span<const PseudoVelocity>(pseudo_).subspan(1), context.h);
+    pseudo_.clear();
 }
 
 // Per substep, as Box2D v3's solver stages: velocities (gravity at h / n), the warm start (the
@@ -91,6 +149,8 @@ void SolveStage::softSubsteps(BodyStore& bodies, std::span<ContactConstraint> co
         solver.softTargets(constraints, moved_, soft, sub.inverseH, false);
         solver.softSweep(solverBodies_, constraints, settings, sub.inverseH, &soft);
         storeVelocities(bodies);
+        if (settings.frictionAnchors)
+            addSoftSlips(constraints, sub.h);
         integratePositions(bodies, {}, sub);
         measureDisplacements(bodies, sub.h);
         solver.softTargets(constraints, moved_, soft, sub.inverseH, k == n - 1);

@@ -79,6 +79,18 @@ private:
     /// The soft step's substeps on the prepared constraints (soft_step.cpp).
     void softSubsteps(BodyStore& bodies, std::span<ContactConstraint> constraints,
                       const StepContext& context, const SolverSettings& settings);
+    /// Constraint j's (c's) anchors kept or seated and their drifts, over a step h, into
+    /// anchorDrifts_ (AnchorTable::drifts).
+    void anchorDrift(const BodyStore& bodies, const ContactManager& contacts, std::size_t j,
+                     const ContactConstraint& c, Real h, const AnchorLengths& lengths);
+    /// The soft step's friction anchors (soft_step.cpp): their drifts as the default step's,
+    /// at the step's start; after the substeps, the anchor pass as one displacement.
+    void seatSoftAnchors(const BodyStore& bodies, const ContactManager& contacts,
+                         std::span<const ContactConstraint> constraints, const StepContext& context,
+                         const AnchorLengths& lengths);
+    void addSoftSlips(std::span<const ContactConstraint> constraints, Real h);
+    void holdSoftAnchors(BodyStore& bodies, std::span<const ContactConstraint> constraints,
+                         const StepContext& context, const AnchorLengths& lengths);
     /// Every awake body's displacement since the step began (into moved_), after a substep
     /// of length h.
     void measureDisplacements(const BodyStore& bodies, Real h);

@@ -26,6 +26,20 @@ void applyForcedSoftStep(SolverSettings& settings) {
     settings.contactHertz = softHertzOverride;
 }
 
+void applyStep(SolverSettings& settings, const StepChoice& step) {
+    if (step.softSubsteps == 0)
+        return;
+    settings.softSubsteps = step.softSubsteps;
+    settings.contactHertz = step.contactHertz;
+}
+
+std::string stepName(const StepChoice& step) {
+    if (step.softSubsteps == 0)
+        return "Default";
+    return "Soft" + std::to_string(step.softSubsteps) + "x" +
+           std::to_string(static_cast<int>(step.contactHertz));
+}
+
 WorldDef quietWorld(Real timeStep, const Vec3& gravity) {
     WorldDef def;
     applyForcedSoftStep(def.solver);

@@ -6,6 +6,7 @@
 /// built the same scene by hand gets the same world bit for bit. Defaults are the engine's
 /// (Material{}, BodyDef{}) unless a builder says otherwise.
 
+#include <string>
 #include <vector>
 
 #include "tumble/lumped.h"
@@ -29,6 +30,20 @@ WorldDef weightlessWorld(Real timeStep = 1.0 / 60.0);
 void forceSoftStep(int substeps, Real contactHertz = SolverSettings{}.contactHertz);
 /// Puts forceSoftStep's settings into `settings` (nothing unless set).
 void applyForcedSoftStep(SolverSettings& settings);
+
+/// A step for the tests that hold the default step and the soft step to the same physics and
+/// tolerances: 0 substeps is the default step, else the soft step at substeps x contactHertz.
+struct StepChoice {
+    int softSubsteps = 0;
+    Real contactHertz = SolverSettings{}.contactHertz;  ///< (Hz)
+};
+/// The default step and the soft step at the settings its trade weighs (docs/ARCHITECTURE.md,
+/// "The soft step"): 3 x 45 Hz and 4 x 30 Hz.
+inline constexpr StepChoice kStepChoices[] = {{}, {3, 45}, {4, 30}};
+/// Puts `step` into `settings` (nothing for the default step).
+void applyStep(SolverSettings& settings, const StepChoice& step);
+/// "Default" or "Soft<substeps>x<hertz>", for parameterised tests' names.
+std::string stepName(const StepChoice& step);
 
 /// The settings of the validation study's and the peers' stack scenes (DESIGN.md section 6):
 /// quietWorld at `timeStep` with `iterations` PGS iterations.

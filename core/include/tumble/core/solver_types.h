@@ -55,10 +55,10 @@ struct SolverSettings {
     /// Ball joints' point rows: one exact sparse block solve per sweep (buildJointBlockRows)
     /// or Gauss-Seidel with the other joint rows.
     SpringSolve jointSolve = SpringSolve::Direct;
-    /// Friction anchors (split impulse only): a sticking manifold's points are pulled back to
-    /// where they stuck, so a box on a turning platform stays on its spot instead of creeping
-    /// outward (engine/src/anchor_table.h). On by default since the 5,000-body soak pile sleeps
-    /// with them (8.12 s; off 8.65 s).
+    /// Friction anchors (split impulse; the soft step: once, after its substeps): a sticking
+    /// manifold's points are pulled back to where they stuck, so a box on a turning platform
+    /// stays on its spot instead of creeping outward (engine/src/anchor_table.h). On by default
+    /// since the 5,000-body soak pile sleeps with them (8.12 s; off 8.65 s).
     bool frictionAnchors = true;
     /// The contact sweeps on wide rows of four manifolds coloured so that none of a colour
     /// share a moving body (contact_rows.h): the same rows, coloured so that every body meets
@@ -70,7 +70,7 @@ struct SolverSettings {
     /// Box2D v3's soft step (docs/ARCHITECTURE.md, "The soft step"), opt-in: > 0 collides once
     /// per step and runs this many substeps of one soft biased sweep, the positions, and one
     /// rigid relax sweep, with gravity at h / softSubsteps, on the rows colouredContacts picks;
-    /// iterations, relaxIterations, tolerance and the friction anchors are then unused. 0
+    /// iterations, relaxIterations and tolerance are then unused; anchors act once a step. 0
     /// (default): the sweeps above. A world with springs or joints keeps the sweeps. >= 0.
     int softSubsteps = 0;
     /// Soft step: natural frequency of a contact between two moving bodies (Hz), > 0; twice it
