@@ -178,7 +178,10 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
     for (Bundle& bundle : bundles_) {
         Lane v[2][6];
         gather(bundle, v);
-        largestChange = std::max(largestChange, solveFriction(bundle, settings, v));
+        // The soft step's biased sweep leaves the friction of exactly solved groups to its
+        // relax sweep, as SweepRows::sweep (ContactSolver::softSweep says why).
+        largestChange =
+            std::max(largestChange, solveFriction(bundle, settings, v, soft && bundle.grouped));
         if (bundle.angular) {
             scatter(bundle, v);
             for (int lane = 0; lane < bundle.laneCount; ++lane) {
@@ -207,8 +210,11 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
 // Coupled: the free answer K^-1 (K old - vt) in the lanes, solveDisc for a lane whose answer
 // leaves the disc.
 TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle, const SolverSettings& settings,
-                                                   Lane (&v)[2][6]) {
+                                                   Lane (&v)[2][6], bool holdGrouped) {
     const Lane omega = splat(settings.relaxation);
+    LaneMask solved{};  // the lanes whose friction this sweep solves
+    for (int lane = 0; lane < 4; ++lane)
+        solved[lane] = holdGrouped && !bundle.normals[lane] ? 0 : -1;
     const bool coupled = settings.friction == FrictionModel::Coupled;
     Real largestChange = 0;
     for (int i = 0; i < bundle.maxPoints; ++i) {
@@ -266,6 +272,12 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle, const SolverS
             next1 = select(greater(next1, limit), limit, next1);
             delta0 = next0 - old0;
             delta1 = next1 - old1;
+        }
+        if (holdGrouped) {
+            delta0 = select(solved, delta0, Lane{});
+            delta1 = select(solved, delta1, Lane{});
+            next0 = select(solved, next0, old0);
+            next1 = select(solved, next1, old1);
         }
         for (int k = 0; k < 3; ++k) {
             const Lane linear = delta0 * bundle.tangents[0][k] + delta1 * bundle.tangents[1][k];

@@ -134,7 +134,9 @@ private:
     void colour(std::span<const SolverBody> bodies, std::span<const ContactConstraint> constraints);
     void fill(Bundle& bundle, int lane, const ContactConstraint& c, std::uint32_t index, Real slop,
               Real inverseH);
-    Real solveFriction(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6]);
+    /// `holdGrouped`: the lanes of exactly solved groups keep their impulses (soft step).
+    Real solveFriction(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6],
+                       bool holdGrouped);
     Real solveNormals(Bundle& bundle, std::span<ContactConstraint> constraints,
                       std::span<NormalFactor> factors, const SolverSettings& settings, Real bias,
                       Real inverseH, bool soft, Lane (&v)[2][6]);
