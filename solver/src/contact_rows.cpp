@@ -178,10 +178,9 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
     for (Bundle& bundle : bundles_) {
         Lane v[2][6];
         gather(bundle, v);
-        // The soft step's biased sweep leaves the friction of exactly solved groups to its
-        // relax sweep, as SweepRows::sweep (ContactSolver::softSweep says why).
-        largestChange =
-            std::max(largestChange, solveFriction(bundle, settings, v, soft && bundle.grouped));
+        largestChange = std::max(
+            largestChange, soft && bundle.grouped ? solveFrictionHoldingGroups(bundle, settings, v)
+                                                  : solveFriction(bundle, settings, v));
         if (bundle.angular) {
             scatter(bundle, v);
             for (int lane = 0; lane < bundle.laneCount; ++lane) {
@@ -210,11 +209,8 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
 // Coupled: the free answer K^-1 (K old - vt) in the lanes, solveDisc for a lane whose answer
 // leaves the disc.
 TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle, const SolverSettings& settings,
-                                                   Lane (&v)[2][6], bool holdGrouped) {
+                                                   Lane (&v)[2][6]) {
     const Lane omega = splat(settings.relaxation);
-    LaneMask solved{};  // the lanes whose friction this sweep solves
-    for (int lane = 0; lane < 4; ++lane)
-        solved[lane] = holdGrouped && !bundle.normals[lane] ? 0 : -1;
     const bool coupled = settings.friction == FrictionModel::Coupled;
     Real largestChange = 0;
     for (int i = 0; i < bundle.maxPoints; ++i) {
@@ -273,12 +269,6 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle, const SolverS
             delta0 = next0 - old0;
             delta1 = next1 - old1;
         }
-        if (holdGrouped) {
-            delta0 = select(solved, delta0, Lane{});
-            delta1 = select(solved, delta1, Lane{});
-            next0 = select(solved, next0, old0);
-            next1 = select(solved, next1, old1);
-        }
         for (int k = 0; k < 3; ++k) {
             const Lane linear = delta0 * bundle.tangents[0][k] + delta1 * bundle.tangents[1][k];
             v[0][k] -= bundle.inverseMassA * linear;
@@ -294,6 +284,36 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle, const SolverS
             const Lane change1 = k[2] * delta0 + k[3] * delta1;
             largestChange = std::max(largestChange,
                                      std::sqrt(largestLane(change0 * change0 + change1 * change1)));
+        }
+    }
+    return largestChange;
+}
+
+// The soft step's biased sweep leaves the friction of exactly solved groups to its relax sweep
+// (ContactSolver::softSweep says why): the bundle's friction solved, then its grouped lanes'
+// velocities and impulses put back, which leaves them as if not solved (no two lanes of a
+// bundle share a moving body), the other lanes as solveFriction leaves them, as SweepRows::sweep
+// does manifold by manifold. The default step's kernel stays as it was.
+Real ContactRows::solveFrictionHoldingGroups(Bundle& bundle, const SolverSettings& settings,
+                                             Lane (&v)[2][6]) {
+    Lane kept[2][6];
+    std::copy(&v[0][0], &v[0][0] + 12, &kept[0][0]);
+    Lane impulses[4][2];
+    for (int i = 0; i < bundle.maxPoints; ++i) {
+        impulses[i][0] = points_[bundle.firstPoint + i].tangentImpulse[0];
+        impulses[i][1] = points_[bundle.firstPoint + i].tangentImpulse[1];
+    }
+    const Real largestChange = solveFriction(bundle, settings, v);
+    for (int lane = 0; lane < bundle.laneCount; ++lane) {
+        if (bundle.normals[lane])
+            continue;
+        for (int body = 0; body < 2; ++body) {
+            for (int k = 0; k < 6; ++k)
+                v[body][k][lane] = kept[body][k][lane];
+        }
+        for (int i = 0; i < bundle.maxPoints; ++i) {
+            points_[bundle.firstPoint + i].tangentImpulse[0][lane] = impulses[i][0][lane];
+            points_[bundle.firstPoint + i].tangentImpulse[1][lane] = impulses[i][1][lane];
         }
     }
     return largestChange;

@@ -134,9 +134,10 @@ private:
     void colour(std::span<const SolverBody> bodies, std::span<const ContactConstraint> constraints);
     void fill(Bundle& bundle, int lane, const ContactConstraint& c, std::uint32_t index, Real slop,
               Real inverseH);
-    /// `holdGrouped`: the lanes of exactly solved groups keep their impulses (soft step).
-    Real solveFriction(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6],
-                       bool holdGrouped);
+    Real solveFriction(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6]);
+    /// solveFriction with the lanes of exactly solved groups left as they were (soft step).
+    Real solveFrictionHoldingGroups(Bundle& bundle, const SolverSettings& settings,
+                                    Lane (&v)[2][6]);
     Real solveNormals(Bundle& bundle, std::span<ContactConstraint> constraints,
                       std::span<NormalFactor> factors, const SolverSettings& settings, Real bias,
                       Real inverseH, bool soft, Lane (&v)[2][6]);
