@@ -158,7 +158,7 @@ void SolveStage::softSubsteps(BodyStore& bodies, std::span<ContactConstraint> co
         solver.endSoftSubstep(constraints);
     }
     softLift_.resize(solverBodies_.size());
-    solver.endSoft(solverBodies_, constraints, moved_, softLift_);
+    solver.endSoft(solverBodies_, constraints, moved_, softLift_, soft.slop, sub.inverseH);
     storeVelocities(bodies);
     if (solver.softBounces())
         displaceBodies(bodies, std::span<const PseudoVelocity>(softLift_).subspan(1), 1);

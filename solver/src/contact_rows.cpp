@@ -178,7 +178,9 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
     for (Bundle& bundle : bundles_) {
         Lane v[2][6];
         gather(bundle, v);
-        largestChange = std::max(largestChange, solveFriction(bundle, settings, v));
+        largestChange = std::max(
+            largestChange, soft && bundle.grouped ? solveFrictionHoldingGroups(bundle, settings, v)
+                                                  : solveFriction(bundle, settings, v));
         if (bundle.angular) {
             scatter(bundle, v);
             for (int lane = 0; lane < bundle.laneCount; ++lane) {
@@ -282,6 +284,36 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle, const SolverS
             const Lane change1 = k[2] * delta0 + k[3] * delta1;
             largestChange = std::max(largestChange,
                                      std::sqrt(largestLane(change0 * change0 + change1 * change1)));
+        }
+    }
+    return largestChange;
+}
+
+// The soft step's biased sweep leaves the friction of exactly solved groups to its relax sweep
+// (ContactSolver::softSweep says why): the bundle's friction solved, then its grouped lanes'
+// velocities and impulses put back, which leaves them as if not solved (no two lanes of a
+// bundle share a moving body), the other lanes as solveFriction leaves them, as SweepRows::sweep
+// does manifold by manifold. The default step's kernel stays as it was.
+Real ContactRows::solveFrictionHoldingGroups(Bundle& bundle, const SolverSettings& settings,
+                                             Lane (&v)[2][6]) {
+    Lane kept[2][6];
+    std::copy(&v[0][0], &v[0][0] + 12, &kept[0][0]);
+    Lane impulses[4][2];
+    for (int i = 0; i < bundle.maxPoints; ++i) {
+        impulses[i][0] = points_[bundle.firstPoint + i].tangentImpulse[0];
+        impulses[i][1] = points_[bundle.firstPoint + i].tangentImpulse[1];
+    }
+    const Real largestChange = solveFriction(bundle, settings, v);
+    for (int lane = 0; lane < bundle.laneCount; ++lane) {
+        if (bundle.normals[lane])
+            continue;
+        for (int body = 0; body < 2; ++body) {
+            for (int k = 0; k < 6; ++k)
+                v[body][k][lane] = kept[body][k][lane];
+        }
+        for (int i = 0; i < bundle.maxPoints; ++i) {
+            points_[bundle.firstPoint + i].tangentImpulse[0][lane] = impulses[i][0][lane];
+            points_[bundle.firstPoint + i].tangentImpulse[1][lane] = impulses[i][1][lane];
         }
     }
     return largestChange;

@@ -131,8 +131,9 @@ Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint>
         SweepBody b(bodyB);
         SweepPoint* points = points_.data() + m.firstPoint;
         // Friction first, with the normal impulses of the last sweep: non-penetration, solved
-        // last, matters more.
-        if (m.friction > 0) {
+        // last, matters more. The soft step's biased sweep leaves the friction of exactly
+        // solved groups to its relax sweep (ContactSolver::softSweep says why).
+        if (m.friction > 0 && !(m.grouped && softScales != nullptr)) {
             largestChange = std::max(
                 largestChange, solveFriction(a, b, m, points, constraints[m.constraint], settings));
         }

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
+#include <string>
 #include <vector>
 
 #include "tumble/world.h"
@@ -46,8 +48,9 @@ struct Bounce {
 
 // A 1 kg ball (r = 0.1 m, restitution e) dropped from 1 m above the top of `boxes` boxes
 // (1 x 1 x 0.5 m, `boxMass` each, e = 0) resting on the ground, h = 1/240.
-Bounce bounceOnBoxes(Real boxMass, Real e, int boxes) {
-    World world(WorldDef{.gravity = Vec3(0, 0, -kG), .timeStep = 1.0 / 240, .enableSleep = false});
+Bounce bounceOnBoxes(Real boxMass, Real e, int boxes, const SolverSettings& solver = {}) {
+    World world(WorldDef{
+        .gravity = Vec3(0, 0, -kG), .timeStep = 1.0 / 240, .solver = solver, .enableSleep = false});
     addGround(world);
     std::vector<BodyId> bodies;
     for (int i = 0; i < boxes; ++i) {
@@ -100,8 +103,8 @@ struct Settle {
 };
 
 // 0.5 m cubes: `ratio` kg on 1 kg on the ground, default settings, for `seconds`.
-Settle heavyOnLight(Real ratio, Real seconds) {
-    World world(WorldDef{.gravity = Vec3(0, 0, -kG), .enableSleep = false});
+Settle heavyOnLight(Real ratio, Real seconds, const SolverSettings& solver = {}) {
+    World world(WorldDef{.gravity = Vec3(0, 0, -kG), .solver = solver, .enableSleep = false});
     addGround(world);
     const Box cube{Vec3::Constant(0.25)};
     const BodyId light = addBody(world, Vec3(0, 0, 0.25), cube, 0.125, 1, 0);
@@ -138,6 +141,86 @@ TEST(StackedImpact, ThousandToOneStackRests) {
     EXPECT_NEAR(s.topHeight, 0.75, SolverSettings{}.slop + 1e-3) << "still on top";
     EXPECT_LT(s.penetration, SolverSettings{}.slop + 1e-3);
     EXPECT_LT(s.topSpeed, 1e-3);
+}
+
+// The soft step (docs/ARCHITECTURE.md, "The soft step") at the two settings its trade weighs:
+// 3 substeps at 45 Hz and 4 at 30 Hz.
+SolverSettings softStep(int substeps, Real hertz) {
+    SolverSettings settings;
+    settings.softSubsteps = substeps;
+    settings.contactHertz = hertz;
+    return settings;
+}
+
+// Under the soft step the ball rebounds from the boxes as from the ground, whatever their mass
+// (ball to box 1000:1 to 1:1000): the bounce is solved with the box's support, rigidly, not as a
+// collision with a free box. Tolerances: the default step's (above).
+TEST(StackedImpact, UnderTheSoftStepTheBallReboundsFromBoxesAsFromTheGround) {
+    for (const auto& [substeps, hertz] : {std::pair{3, 45.0}, std::pair{4, 30.0}}) {
+        for (const int boxes : {1, 3}) {
+            for (const Real mass : {0.001, 0.1, 1.0, 10.0, 1000.0}) {
+                for (const Real e : {0.3, 0.5, 0.8}) {
+                    const Bounce b = bounceOnBoxes(mass, e, boxes, softStep(substeps, hertz));
+                    EXPECT_NEAR(b.ratio, e * e, 0.02 * e * e)
+                        << substeps << " x " << hertz << " Hz: " << boxes << " boxes of " << mass
+                        << " kg, e = " << e;
+                    EXPECT_LE(b.energyGain, 1e-9) << substeps << " x " << hertz << " Hz: " << boxes
+                                                  << " boxes of " << mass << " kg, e = " << e;
+                }
+            }
+        }
+    }
+}
+
+// Heavy on light under the soft step, mass ratios 1:1 to 1000:1: no energy gained and at rest
+// on top (the default step's tolerances, above), sunk no deeper than the springs of the 1:1
+// stack let it. Its rows are soft (ratios from NormalIslands::kMassRatio are solved rigidly in
+// their group): the ground's, k = m (2 w)^2 under 2 m g, sags g / (2 w^2), the pair's,
+// k = (m / 2) w^2 under m g, 2 g / w^2; 2.5 g / w^2 in all (0.31 mm at 45 Hz, 0.69 mm at 30).
+TEST(StackedImpact, UnderTheSoftStepHeavyOnLightRestsAtEveryMassRatio) {
+    for (const auto& [substeps, hertz] : {std::pair{3, 45.0}, std::pair{4, 30.0}}) {
+        const Real omega = 2 * std::numbers::pi * hertz;
+        const Real sag = 2.5 * kG / (omega * omega);
+        for (const Real ratio : {1.0, 10.0, 100.0, 1e3, 1e4, 1e5, 1e6}) {
+            const Settle s = heavyOnLight(ratio, 5, softStep(substeps, hertz));
+            const std::string what = std::to_string(substeps) + " x " + std::to_string(hertz) +
+                                     " Hz, mass ratio " + std::to_string(ratio);
+            EXPECT_LE(s.energyRise, 1e-6) << what;
+            EXPECT_LE(0.75 - s.topHeight, 1.01 * sag) << what;
+            EXPECT_LT(s.penetration, SolverSettings{}.slop + 1e-3) << what;
+            EXPECT_LT(s.topSpeed, 1e-3) << what;
+        }
+    }
+}
+
+// Columns of a box on another, 100,000:1 and 1:1 side by side, sliding: the coloured rows hold
+// the friction of the exactly solved groups in the soft step's biased sweep lane by lane, as
+// the scalar sweep does manifold by manifold, so the two give the same bits.
+TEST(StackedImpact, UnderTheSoftStepColouredRowsGiveTheScalarSweepsBits) {
+    std::vector<Vec3> ends[2];
+    for (const bool coloured : {true, false}) {
+        SolverSettings settings = softStep(3, 45);
+        settings.colouredContacts = coloured;
+        World world(WorldDef{.gravity = Vec3(0, 0, -kG), .solver = settings, .enableSleep = false});
+        addGround(world);
+        const Box cube{Vec3::Constant(0.25)};
+        std::vector<BodyId> bodies;
+        for (int column = 0; column < 8; ++column) {
+            const Real x = 2.0 * column;
+            bodies.push_back(addBody(world, Vec3(x, 0, 0.25), cube, 0.125, 1, 0));
+            bodies.push_back(
+                addBody(world, Vec3(x, 0, 0.75), cube, 0.125, column % 2 == 0 ? 1e5 : 1, 0));
+            world.setLinearVelocity(bodies.back(), Vec3(0.5, 0.2 * column, 0));
+        }
+        for (int i = 0; i < 120; ++i)
+            EXPECT_TRUE(world.step().ok());
+        for (const BodyId body : bodies)
+            ends[coloured ? 0 : 1].push_back(world.position(body));
+    }
+    for (std::size_t i = 0; i < ends[0].size(); ++i) {
+        for (int k = 0; k < 3; ++k)
+            EXPECT_EQ(ends[0][i][k], ends[1][i][k]) << "body " << i << ", axis " << k;
+    }
 }
 
 }  // namespace

@@ -135,6 +135,9 @@ private:
     void fill(Bundle& bundle, int lane, const ContactConstraint& c, std::uint32_t index, Real slop,
               Real inverseH);
     Real solveFriction(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6]);
+    /// solveFriction with the lanes of exactly solved groups left as they were (soft step).
+    Real solveFrictionHoldingGroups(Bundle& bundle, const SolverSettings& settings,
+                                    Lane (&v)[2][6]);
     Real solveNormals(Bundle& bundle, std::span<ContactConstraint> constraints,
                       std::span<NormalFactor> factors, const SolverSettings& settings, Real bias,
                       Real inverseH, bool soft, Lane (&v)[2][6]);

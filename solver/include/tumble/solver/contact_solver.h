@@ -248,13 +248,21 @@ public:
     void softImpacts(std::span<const SolverBody> change,
                      std::span<const ContactConstraint> constraints, Real h, Real hs,
                      Real threshold);
-    /// After the last substep: restitution once, then the step's sums into the constraints.
-    /// A point that bounced is lifted where its rebound would be at the step's end: `lift` (by
-    /// solver body, zeroed here) gets the displacements, which the caller applies.
+    /// After the last substep: restitution once (with the exactly solved groups of the bouncing
+    /// points, at the last relax sweep's targets: `slop` and `inverseH` the substep's), then the
+    /// step's sums into the constraints. A point that bounced is lifted where its rebound would
+    /// be at the step's end: `lift` (by solver body, zeroed here) gets the displacements, which
+    /// the caller applies.
     void endSoft(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
-                 std::span<const BodyDisplacement> moved, std::span<PseudoVelocity> lift);
+                 std::span<const BodyDisplacement> moved, std::span<PseudoVelocity> lift, Real slop,
+                 Real inverseH);
 
 private:
+    /// endSoft's bouncing points in exactly solved groups: their groups' rigid solve with the
+    /// bounces, and their lift (soft_contacts.cpp).
+    void softGroupBounces(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
+                          std::span<const BodyDisplacement> moved, std::span<PseudoVelocity> lift,
+                          Real slop, Real inverseH);
     /// One constraint's impulses summed over the substeps (N s).
     struct SoftSum {
         std::array<Real, 4> normal{};
@@ -294,6 +302,7 @@ private:
     std::vector<SoftSum> softSums_;          ///< soft step: per constraint
     std::vector<SoftBounce> softBounces_;    ///< soft step: the points that bounce
     std::vector<std::uint32_t> softLate_;    ///< soft step: restitution > 0, arriving later
+    std::vector<SolverBody> softLifts_;      ///< soft step: softGroupBounces' displacements (m)
 };
 
 }  // namespace tumble
