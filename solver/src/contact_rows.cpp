@@ -145,22 +145,67 @@ template <class Point>
 #define TUMBLE_LANE_KERNEL
 #endif
 
+namespace {
+
+// Two lanes: the width of the x86-64 baseline's registers, whose interleaving loads and stores
+// move two bodies' values at once.
+using Pair = double __attribute__((vector_size(16)));
+
+[[gnu::always_inline]] inline Pair loadPair(const Real* from) {
+    Pair p;
+    __builtin_memcpy(&p, from, sizeof(Pair));
+    return p;
+}
+
+[[gnu::always_inline]] inline void storePair(Real* to, Pair p) {
+    __builtin_memcpy(to, &p, sizeof(Pair));
+}
+
+}  // namespace
+
+// Each lane's body velocity loaded two values at a time and interleaved into the lanes: element
+// by element, the loads and inserts were 6 % of a pyramid's step.
 void ContactRows::gather(const Bundle& bundle, Lane (&v)[2][6]) const {
-    for (int k = 0; k < 6; ++k) {
-        for (int lane = 0; lane < kWidth; ++lane) {
-            v[0][k][lane] = velocities_[bundle.bodyA[lane]].v[k];
-            v[1][k][lane] = velocities_[bundle.bodyB[lane]].v[k];
+    for (int side = 0; side < 2; ++side) {
+        const std::array<std::uint32_t, 4>& body = side == 0 ? bundle.bodyA : bundle.bodyB;
+        Real* out = reinterpret_cast<Real*>(v[side]);
+        for (int half = 0; half < 2; ++half) {
+            const Real* first = velocities_[body[2 * half]].v;
+            const Real* second = velocities_[body[2 * half + 1]].v;
+            for (int k = 0; k < 6; k += 2) {
+                const Pair p = loadPair(first + k);
+                const Pair q = loadPair(second + k);
+                storePair(out + 4 * k + 2 * half, __builtin_shufflevector(p, q, 0, 2));
+                storePair(out + 4 * (k + 1) + 2 * half, __builtin_shufflevector(p, q, 1, 3));
+            }
         }
     }
 }
 
 // A body in two lanes of a bundle cannot move (colouring): every lane writes its unchanged
-// velocity back.
+// velocity back. Lane by lane, A before B, as the element-wise stores were: the same last
+// writer for each value.
 void ContactRows::scatter(const Bundle& bundle, const Lane (&v)[2][6]) {
-    for (int lane = 0; lane < kWidth; ++lane) {
-        for (int k = 0; k < 6; ++k) {
-            velocities_[bundle.bodyA[lane]].v[k] = v[0][k][lane];
-            velocities_[bundle.bodyB[lane]].v[k] = v[1][k][lane];
+    for (int half = 0; half < 2; ++half) {
+        Pair first[2][3];   // side, pair of values: lane 2 half
+        Pair second[2][3];  // lane 2 half + 1
+        for (int side = 0; side < 2; ++side) {
+            const Real* in = reinterpret_cast<const Real*>(v[side]);
+            for (int k = 0; k < 6; k += 2) {
+                const Pair p = loadPair(in + 4 * k + 2 * half);
+                const Pair q = loadPair(in + 4 * (k + 1) + 2 * half);
+                first[side][k / 2] = __builtin_shufflevector(p, q, 0, 2);
+                second[side][k / 2] = __builtin_shufflevector(p, q, 1, 3);
+            }
+        }
+        for (int lane = 2 * half; lane < 2 * half + 2; ++lane) {
+            const Pair(&rows)[2][3] = lane == 2 * half ? first : second;
+            Real* a = velocities_[bundle.bodyA[lane]].v;
+            for (int k = 0; k < 3; ++k)
+                storePair(a + 2 * k, rows[0][k]);
+            Real* b = velocities_[bundle.bodyB[lane]].v;
+            for (int k = 0; k < 3; ++k)
+                storePair(b + 2 * k, rows[1][k]);
         }
     }
 }
