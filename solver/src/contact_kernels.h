@@ -96,11 +96,14 @@ void solveNormals(Body& a, Body& b, const Vec3& normal, const Mat4* k, Point* po
         for (int i = 0; i < n; ++i)
             applyNormal(a, b, normal, points[i], next(i) - old(i));
     } else {
-        // One point, or a degenerate block: the points one by one.
+        // One point, or a degenerate block: the points one by one. The first sees the
+        // velocities its gap was measured at (nothing has moved them since): its vn is gap(0),
+        // bit for bit, measured once (a pile's one-point manifolds measured it twice).
         for (int i = 0; i < n; ++i) {
             Point& p = points[i];
-            const Real vn =
-                normalSpeed(a, b, normal, p) - normalTarget(p, bias, settings.slop, inverseH);
+            const Real vn = i == 0 ? gap(0)
+                                   : normalSpeed(a, b, normal, p) -
+                                         normalTarget(p, bias, settings.slop, inverseH);
             if (softScale == nullptr) {
                 next(i) = std::max<Real>(0, old(i) - omega * p.normalMass * vn);
             } else {

@@ -84,16 +84,21 @@ void holdNormals(SolverBody& a, SolverBody& b, const ContactConstraint& c,
         applyNormal(a, b, c.normal, c.points[i], impulse(i));
 }
 
+// The velocity a point's drift asks for (m/s): at most catchUp of it closed in one step.
+Vec3 pullOf(const Vec3& drift, Real inverseH, Real catchUp) {
+    const Real length = drift.norm();
+    const Vec3 aim = length > catchUp ? Vec3((catchUp / length) * drift) : drift;
+    return inverseH * aim;
+}
+
 // One sweep over a manifold's friction rows: the sticking answer, clamped to the Coulomb disc
 // (a point that needs more lets its anchors go after the step, so the rim is not worth the
 // exact solve of the velocity sweeps).
-void pullPoints(SolverBody& a, SolverBody& b, const ContactConstraint& c, const Vec3* drifts,
-                Vec3* rows, Real inverseH, Real catchUp) {
+void pullPoints(SolverBody& a, SolverBody& b, const ContactConstraint& c, const Vec3* pulls,
+                Vec3* rows) {
     for (int i = 0; i < c.pointCount; ++i) {
         const ContactConstraintPoint& p = c.points[i];
-        const Real drift = drifts[i].norm();
-        const Vec3 aim = drift > catchUp ? (catchUp / drift) * drifts[i] : drifts[i];
-        const Vec3 v = b.velocityAt(p.rB) - a.velocityAt(p.rA) + inverseH * aim;
+        const Vec3 v = b.velocityAt(p.rB) - a.velocityAt(p.rA) + pulls[i];
         const Vec2 slip(c.tangents[0].dot(v), c.tangents[1].dot(v));
         const Vec2 old = rows[i].head<2>();
         Vec2 next = old - p.tangent.inverse * slip;
@@ -130,11 +135,14 @@ void FrictionAnchorPass::run(std::span<const SolverBody> bodies,
     loadPseudoBodies(bodies, pseudo, bodies_);
     rows_.assign(4 * active_.size(), Vec3::Zero());
     inverses_.resize(active_.size());
+    pulls_.resize(4 * active_.size());  // the drifts are the same in every sweep
     for (std::size_t k = 0; k < active_.size(); ++k) {
         const ContactConstraint& c = constraints[active_[k]];
-        for (int i = 0; i < c.pointCount; ++i)
+        for (int i = 0; i < c.pointCount; ++i) {
             rows_[4 * k + i].z() =
                 normalSpeed(bodies_[c.bodyA], bodies_[c.bodyB], c.normal, c.points[i]);
+            pulls_[4 * k + i] = pullOf(drifts[4 * active_[k] + i], inverseH, lengths.catchUp);
+        }
         if (c.pointCount > 1)
             inverses_[k] = normalBlockInverse(c);
     }
@@ -143,7 +151,7 @@ void FrictionAnchorPass::run(std::span<const SolverBody> bodies,
             const ContactConstraint& c = constraints[active_[k]];
             SolverBody& a = bodies_[c.bodyA];
             SolverBody& b = bodies_[c.bodyB];
-            pullPoints(a, b, c, &drifts[4 * active_[k]], &rows_[4 * k], inverseH, lengths.catchUp);
+            pullPoints(a, b, c, &pulls_[4 * k], &rows_[4 * k]);
             if (c.pointCount > 1)
                 holdNormals(a, b, c, std::span(rows_).subspan(4 * k, c.pointCount), inverses_[k]);
         }

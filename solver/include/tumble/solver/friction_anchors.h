@@ -67,6 +67,8 @@ private:
         rows_;  ///< per active point: tangential impulses (N s), normal pseudo-velocity (m/s)
     /// per active manifold: its regularised normal block's inverse (friction_anchors.cpp)
     std::vector<Eigen::Matrix<Real, 4, 4>> inverses_;
+    /// per active point: the velocity its drift asks for (m/s), the same in every sweep
+    std::vector<Vec3> pulls_;
 };
 
 }  // namespace tumble
