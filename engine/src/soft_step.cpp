@@ -74,19 +74,22 @@ void SolveStage::seatSoftAnchors(const BodyStore& bodies, const ContactManager& 
         anchorDrift(bodies, contacts, j, constraints[j], context.h, lengths);
 }
 
-// What the substep's velocities, those the positions move with, slide each point by on the
+// What the substeps' velocities, those the positions move with, slid each point by on the
 // levers of the step's start (m): the soft rows' one iteration a substep leaves some slip that
-// the default step's sweeps do not, and the drifts are to hold it too. Not the anchors' places
-// after the substeps: those part along the cycloid of a rolling ball's material points,
+// the default step's sweeps do not, and the drifts are to hold it too. Linear in the velocities,
+// so once from the bodies' summed displacements (moved_: translation and summed turn), not
+// from each substep's (that was 2.7 % of a soft pyramid's step). Not the anchors' places after
+// the substeps: those part along the cycloid of a rolling ball's material points,
 // R theta^3 / 6, which no slip made (see seatSoftAnchors).
-void SolveStage::addSoftSlips(std::span<const ContactConstraint> constraints, Real h) {
+void SolveStage::addSoftSlips(std::span<const ContactConstraint> constraints) {
     for (std::size_t j = 0; j < constraints.size(); ++j) {
         const ContactConstraint& c = constraints[j];
-        const SolverBody& a = solverBodies_[c.bodyA];
-        const SolverBody& b = solverBodies_[c.bodyB];
+        const BodyDisplacement& a = moved_[c.bodyA];
+        const BodyDisplacement& b = moved_[c.bodyB];
         for (int i = 0; i < c.pointCount; ++i) {
-            const Vec3 v = b.velocityAt(c.points[i].rB) - a.velocityAt(c.points[i].rA);
-            anchorDrifts_[4 * j + i] += h * (v - v.dot(c.normal) * c.normal);
+            const Vec3 d = (b.translation + b.turn.cross(c.points[i].rB)) -
+                           (a.translation + a.turn.cross(c.points[i].rA));
+            anchorDrifts_[4 * j + i] += d - d.dot(c.normal) * c.normal;
         }
     }
 }
@@ -96,6 +99,7 @@ void SolveStage::addSoftSlips(std::span<const ContactConstraint> constraints, Re
 // limit slides and is left out (release() seats it afresh when it sticks again).
 void SolveStage::holdSoftAnchors(BodyStore& bodies, std::span<const ContactConstraint> constraints,
                                  const StepContext& context, const AnchorLengths& lengths) {
+    addSoftSlips(constraints);
     for (std::size_t j = 0; j < constraints.size(); ++j) {
         if (AnchorTable::slips(constraints[j]))
             std::fill_n(&anchorDrifts_[4 * j], 4, Vec3::Zero());
@@ -149,8 +153,6 @@ void SolveStage::softSubsteps(BodyStore& bodies, std::span<ContactConstraint> co
         solver.softTargets(constraints, moved_, soft, sub.inverseH, false);
         solver.softSweep(solverBodies_, constraints, settings, sub.inverseH, &soft);
         storeVelocities(bodies);
-        if (settings.frictionAnchors)
-            addSoftSlips(constraints, sub.h);
         integratePositions(bodies, {}, sub);
         measureDisplacements(bodies, sub.h);
         solver.softTargets(constraints, moved_, soft, sub.inverseH, k == n - 1);

@@ -88,7 +88,7 @@ private:
     void seatSoftAnchors(const BodyStore& bodies, const ContactManager& contacts,
                          std::span<const ContactConstraint> constraints, const StepContext& context,
                          const AnchorLengths& lengths);
-    void addSoftSlips(std::span<const ContactConstraint> constraints, Real h);
+    void addSoftSlips(std::span<const ContactConstraint> constraints);
     void holdSoftAnchors(BodyStore& bodies, std::span<const ContactConstraint> constraints,
                          const StepContext& context, const AnchorLengths& lengths);
     /// Every awake body's displacement since the step began (into moved_), after a substep
