@@ -237,7 +237,7 @@ void SpringBlockSolver::start(std::span<const SolverBody> bodies) {
     factored_ = factor();
 }
 
-void SpringBlockSolver::computeUpdate(std::span<const SolverBody> bodies) {
+void SpringBlockSolver::loadResiduals(std::span<const SolverBody> bodies) {
     const int n = static_cast<int>(rowCount());
     for (int i = 0; i < n; ++i) {
         const SpringRow& r = row(i);
@@ -245,26 +245,76 @@ void SpringBlockSolver::computeUpdate(std::span<const SolverBody> bodies) {
                                              r.bias + r.softness * r.impulse)
                                          : 0;
     }
-    // An inactive row's row and column of L are +0 (factor()), so its value stays +0 and its
-    // column subtracts only +0 * +0: skipping it keeps every bit (x - +0 is x, -0 included).
-    // Column j of L holds rows below j only, so work_[j] is not written while its column is
-    // applied: held in a register, not loaded (or stored) again per entry.
+}
+
+namespace {
+
+// Every value finite and none -0: then subtracting +0 * y (y finite) changes none, and no
+// subtraction makes a -0 (x - x is +0).
+bool plain(std::span<const Real> values) {
+    bool plain = true;
+    for (const Real v : values)
+        plain = plain && std::isfinite(v) && !(v == 0 && std::signbit(v));
+    return plain;
+}
+
+}  // namespace
+
+bool SpringBlockSolver::solveCompact() {
+    const int n = static_cast<int>(rowCount());
+    if (!plain(work_))
+        return false;
     for (int j = 0; j < n; ++j) {  // L y = b
-        if (!active_[rowAt_[j]])
-            continue;
         const Real y = work_[j];
-        for (int p = lStart_[j]; p < lStart_[j + 1]; ++p)
-            work_[lIndex_[p]] -= lValue_[p] * y;
+        for (int p = compactStart_[j]; p < compactStart_[j + 1]; ++p)
+            work_[compactIndex_[p]] -= compactValue_[p] * y;
     }
+    // Each y was final when its column was applied: all were finite, so each +0 * y left out
+    // was a zero, and no value it would have met was -0.
+    if (!plain(work_))
+        return false;
     for (int j = 0; j < n; ++j)
         work_[j] /= diagonal_[j];
+    if (!plain(work_))
+        return false;
     for (int j = n - 1; j >= 0; --j) {  // L' x = y
-        if (!active_[rowAt_[j]])
-            continue;
         Real x = work_[j];
-        for (int p = lStart_[j]; p < lStart_[j + 1]; ++p)
-            x -= lValue_[p] * work_[lIndex_[p]];
+        for (int p = compactStart_[j]; p < compactStart_[j + 1]; ++p)
+            x -= compactValue_[p] * work_[compactIndex_[p]];
         work_[j] = x;
+    }
+    return plain(work_);
+}
+
+void SpringBlockSolver::computeUpdate(std::span<const SolverBody> bodies) {
+    const int n = static_cast<int>(rowCount());
+    loadResiduals(bodies);
+    // Over the entries of L that compactPattern() kept, when the values it leaves out (+0)
+    // change no bit: otherwise (a -0, an overflow, a NaN) again over the whole of L.
+    if (!compacted_ || !solveCompact()) {
+        if (compacted_)
+            loadResiduals(bodies);
+        // An inactive row's row and column of L are +0 (factor()), so its value stays +0 and
+        // its column subtracts only +0 * +0: skipping it keeps every bit (x - +0 is x, -0
+        // included). Column j of L holds rows below j only, so work_[j] is not written while
+        // its column is applied: held in a register, not loaded (or stored) again per entry.
+        for (int j = 0; j < n; ++j) {  // L y = b
+            if (!active_[rowAt_[j]])
+                continue;
+            const Real y = work_[j];
+            for (int p = lStart_[j]; p < lStart_[j + 1]; ++p)
+                work_[lIndex_[p]] -= lValue_[p] * y;
+        }
+        for (int j = 0; j < n; ++j)
+            work_[j] /= diagonal_[j];
+        for (int j = n - 1; j >= 0; --j) {  // L' x = y
+            if (!active_[rowAt_[j]])
+                continue;
+            Real x = work_[j];
+            for (int p = lStart_[j]; p < lStart_[j + 1]; ++p)
+                x -= lValue_[p] * work_[lIndex_[p]];
+            work_[j] = x;
+        }
     }
     for (int i = 0; i < n; ++i)
         delta_[i] = active_[i] ? work_[position_[i]] : 0;

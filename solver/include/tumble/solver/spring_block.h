@@ -128,6 +128,11 @@ private:
     bool factorCompact();
     /// delta = -K^-1 residual over the active rows (in original row order).
     void computeUpdate(std::span<const SolverBody> bodies);
+    /// work_ = -residual of each active row, in the ordering's positions; 0 for the others.
+    void loadResiduals(std::span<const SolverBody> bodies);
+    /// computeUpdate()'s solves over compactPattern()'s L; false when one of its checks fails
+    /// (work_ then holds nothing to keep).
+    bool solveCompact();
     Real apply(std::span<SolverBody> bodies, bool clamp);
     /// Threads the active set left slack, by Gauss-Seidel: contacts solved after the set was
     /// chosen may stretch them, and nothing else would stop it.
