@@ -133,63 +133,6 @@ void SpringBlockSolver::analyse() {
     symbolic();
 }
 
-// ldl_symbolic's elimination tree and column counts, then the numeric factorisation's sparse
-// triangular solves done once on the pattern: each row k of L as the columns its solve visits,
-// in the order it visits them, and the slot of L each result goes to. factor() then repeats
-// the same arithmetic in the same order (bitwise the walk's result) without walking the tree:
-// the walk was a sixth of the factorisation of a 40 x 40 net.
-void SpringBlockSolver::symbolic() {
-    const int n = static_cast<int>(columnStart_.size()) - 1;
-    parent_.assign(n, -1);
-    lCount_.assign(n, 0);
-    flag_.assign(n, 0);
-    for (int k = 0; k < n; ++k) {
-        flag_[k] = k;
-        for (int p = columnStart_[k]; p < columnStart_[k + 1]; ++p) {
-            for (int i = rowIndex_[p]; i < k && flag_[i] != k; i = parent_[i]) {
-                if (parent_[i] == -1)
-                    parent_[i] = k;
-                ++lCount_[i];
-                flag_[i] = k;
-            }
-        }
-    }
-    lStart_.assign(n + 1, 0);
-    for (int k = 0; k < n; ++k)
-        lStart_[k + 1] = lStart_[k] + lCount_[k];
-    lIndex_.resize(lStart_[n]);
-    lValue_.resize(lStart_[n]);
-    reachStart_.assign(n + 1, 0);
-    reach_.resize(lStart_[n]);
-    pattern_.resize(n);
-    std::fill(lCount_.begin(), lCount_.end(), 0);
-    for (int k = 0; k < n; ++k) {
-        int top = n;
-        flag_[k] = k;
-        for (int p = columnStart_[k]; p < columnStart_[k + 1]; ++p) {
-            int length = 0;
-            for (int i = rowIndex_[p]; flag_[i] != k; i = parent_[i]) {
-                pattern_[length++] = i;
-                flag_[i] = k;
-            }
-            while (length > 0)
-                pattern_[--top] = pattern_[--length];
-        }
-        int q = reachStart_[k];
-        for (; top < n; ++top, ++q) {
-            const int i = pattern_[top];
-            const int slot = lStart_[i] + lCount_[i]++;
-            lIndex_[slot] = k;
-            reach_[q] = {i, lStart_[i], slot};
-        }
-        reachStart_[k + 1] = q;
-    }
-    zeroRow_.assign(n, 0);
-    diagonal_.resize(n);
-    work_.resize(n);
-    delta_.resize(n);
-}
-
 void SpringBlockSolver::assemble(std::span<const SolverBody> bodies) {
     std::fill(values_.begin(), values_.end(), Real(0));
     const int n = static_cast<int>(rowCount());
@@ -211,57 +154,6 @@ void SpringBlockSolver::assemble(std::span<const SolverBody> bodies) {
         values_[c.entry] +=
             sign * (body.inverseMass * p.direction.dot(q.direction) + angularP.dot(impulseQ));
     }
-}
-
-bool SpringBlockSolver::factor() {
-    // ldl_numeric: row k of L from a sparse triangular solve over the columns symbolic() found.
-    const int n = static_cast<int>(diagonal_.size());
-    for (int k = 0; k < n; ++k) {
-        // An inactive row's column holds only its unit diagonal (assemble()): every y of its
-        // solve is +0, so its row of L is +0 and its diagonal 1 -- what the solve below would
-        // compute, without scattering or reading.
-        // Its zeros are written once: they stay until the row takes part again (scattered
-        // stores, a quarter of the factorisation of a 40 x 40 net when rewritten every step).
-        if (!active_[rowAt_[k]]) {
-            if (!zeroRow_[k]) {
-                for (int q = reachStart_[k]; q < reachStart_[k + 1]; ++q)
-                    lValue_[reach_[q].slot] = 0;
-                zeroRow_[k] = 1;
-            }
-            work_[k] = 0;  // may hold the last solve's result: later rows read it as +0
-            diagonal_[k] = 1;
-            continue;
-        }
-        zeroRow_[k] = 0;
-        work_[k] = 0;
-        for (int p = columnStart_[k]; p < columnStart_[k + 1]; ++p)
-            work_[rowIndex_[p]] += values_[p];
-        Real d = work_[k];
-        work_[k] = 0;
-        for (int q = reachStart_[k]; q < reachStart_[k + 1]; ++q) {
-            const Reach& r = reach_[q];
-            const Real yi = work_[r.column];
-            work_[r.column] = 0;
-            // A slack thread's row couples nothing: its y is +0 (work_ never holds -0: it sums
-            // from +0 and subtracts, and x - x is +0), and so is its L entry; subtracting
-            // +0 * l changes no value, so skipping it keeps the bits.
-            if (yi == 0) {
-                lValue_[r.slot] = 0;
-                continue;
-            }
-            for (int p = r.first; p < r.slot; ++p)
-                work_[lIndex_[p]] -= lValue_[p] * yi;
-            const Real lki = yi / diagonal_[r.column];
-            d -= lki * yi;
-            lValue_[r.slot] = lki;
-        }
-        diagonal_[k] = d;
-        // K is positive definite (every active row has a positive softness or a movable body);
-        // anything else is rounding on a near-rigid loop, and the solve must not divide by it.
-        if (!(d > 0) || !std::isfinite(d))
-            return false;
-    }
-    return true;
 }
 
 void SpringBlockSolver::addTransverseRows(std::span<const SolverBody> bodies) {
@@ -345,7 +237,7 @@ void SpringBlockSolver::start(std::span<const SolverBody> bodies) {
     factored_ = factor();
 }
 
-void SpringBlockSolver::computeUpdate(std::span<const SolverBody> bodies) {
+void SpringBlockSolver::loadResiduals(std::span<const SolverBody> bodies) {
     const int n = static_cast<int>(rowCount());
     for (int i = 0; i < n; ++i) {
         const SpringRow& r = row(i);
@@ -353,26 +245,76 @@ void SpringBlockSolver::computeUpdate(std::span<const SolverBody> bodies) {
                                              r.bias + r.softness * r.impulse)
                                          : 0;
     }
-    // An inactive row's row and column of L are +0 (factor()), so its value stays +0 and its
-    // column subtracts only +0 * +0: skipping it keeps every bit (x - +0 is x, -0 included).
-    // Column j of L holds rows below j only, so work_[j] is not written while its column is
-    // applied: held in a register, not loaded (or stored) again per entry.
+}
+
+namespace {
+
+// Every value finite and none -0: then subtracting +0 * y (y finite) changes none, and no
+// subtraction makes a -0 (x - x is +0).
+bool plain(std::span<const Real> values) {
+    bool plain = true;
+    for (const Real v : values)
+        plain = plain && std::isfinite(v) && !(v == 0 && std::signbit(v));
+    return plain;
+}
+
+}  // namespace
+
+bool SpringBlockSolver::solveCompact() {
+    const int n = static_cast<int>(rowCount());
+    if (!plain(work_))
+        return false;
     for (int j = 0; j < n; ++j) {  // L y = b
-        if (!active_[rowAt_[j]])
-            continue;
         const Real y = work_[j];
-        for (int p = lStart_[j]; p < lStart_[j + 1]; ++p)
-            work_[lIndex_[p]] -= lValue_[p] * y;
+        for (int p = compactStart_[j]; p < compactStart_[j + 1]; ++p)
+            work_[compactIndex_[p]] -= compactValue_[p] * y;
     }
+    // Each y was final when its column was applied: all were finite, so each +0 * y left out
+    // was a zero, and no value it would have met was -0.
+    if (!plain(work_))
+        return false;
     for (int j = 0; j < n; ++j)
         work_[j] /= diagonal_[j];
+    if (!plain(work_))
+        return false;
     for (int j = n - 1; j >= 0; --j) {  // L' x = y
-        if (!active_[rowAt_[j]])
-            continue;
         Real x = work_[j];
-        for (int p = lStart_[j]; p < lStart_[j + 1]; ++p)
-            x -= lValue_[p] * work_[lIndex_[p]];
+        for (int p = compactStart_[j]; p < compactStart_[j + 1]; ++p)
+            x -= compactValue_[p] * work_[compactIndex_[p]];
         work_[j] = x;
+    }
+    return plain(work_);
+}
+
+void SpringBlockSolver::computeUpdate(std::span<const SolverBody> bodies) {
+    const int n = static_cast<int>(rowCount());
+    loadResiduals(bodies);
+    // Over the entries of L that compactPattern() kept, when the values it leaves out (+0)
+    // change no bit: otherwise (a -0, an overflow, a NaN) again over the whole of L.
+    if (!compacted_ || !solveCompact()) {
+        if (compacted_)
+            loadResiduals(bodies);
+        // An inactive row's row and column of L are +0 (factor()), so its value stays +0 and
+        // its column subtracts only +0 * +0: skipping it keeps every bit (x - +0 is x, -0
+        // included). Column j of L holds rows below j only, so work_[j] is not written while
+        // its column is applied: held in a register, not loaded (or stored) again per entry.
+        for (int j = 0; j < n; ++j) {  // L y = b
+            if (!active_[rowAt_[j]])
+                continue;
+            const Real y = work_[j];
+            for (int p = lStart_[j]; p < lStart_[j + 1]; ++p)
+                work_[lIndex_[p]] -= lValue_[p] * y;
+        }
+        for (int j = 0; j < n; ++j)
+            work_[j] /= diagonal_[j];
+        for (int j = n - 1; j >= 0; --j) {  // L' x = y
+            if (!active_[rowAt_[j]])
+                continue;
+            Real x = work_[j];
+            for (int p = lStart_[j]; p < lStart_[j + 1]; ++p)
+                x -= lValue_[p] * work_[lIndex_[p]];
+            work_[j] = x;
+        }
     }
     for (int i = 0; i < n; ++i)
         delta_[i] = active_[i] ? work_[position_[i]] : 0;

@@ -81,6 +81,12 @@ private:
         int first;   // its first slot in lIndex_ / lValue_
         int slot;    // where L(k, i) goes; the slots before it are the rows above k
     };
+    struct CompactReach {  // a Reach that compactPattern() kept, in its compact L
+        int column;
+        int first;     // column's first slot in compactIndex_ / compactValue_
+        int slot;      // where L(k, i) goes there
+        int fullSlot;  // and in lIndex_ / lValue_
+    };
     struct Coupling {         // one body's share of an off-diagonal entry of K
         std::uint32_t entry;  // into values_
         std::uint32_t rowI;
@@ -112,9 +118,21 @@ private:
     /// The elimination tree, L's pattern and each row's solve order (factor()'s walk, once).
     void symbolic();
     void assemble(std::span<const SolverBody> bodies);
+    /// Whether values_'s zeros are those rememberNonzeros() kept.
+    bool sameNonzeros() const;
+    void rememberNonzeros();
+    /// The rows' solves and the columns of L that K's nonzeros reach (factor()).
+    void compactPattern();
     bool factor();
+    bool factorWhole();
+    bool factorCompact();
     /// delta = -K^-1 residual over the active rows (in original row order).
     void computeUpdate(std::span<const SolverBody> bodies);
+    /// work_ = -residual of each active row, in the ordering's positions; 0 for the others.
+    void loadResiduals(std::span<const SolverBody> bodies);
+    /// computeUpdate()'s solves over compactPattern()'s L; false when one of its checks fails
+    /// (work_ then holds nothing to keep).
+    bool solveCompact();
     Real apply(std::span<SolverBody> bodies, bool clamp);
     /// Threads the active set left slack, by Gauss-Seidel: contacts solved after the set was
     /// chosen may stretch them, and nothing else would stop it.
@@ -160,12 +178,28 @@ private:
     // Row k of L: the columns reach_[reachStart_[k] ...] in solve order.
     std::vector<int> reachStart_;
     std::vector<Reach> reach_;
+    // L's entries that K's nonzeros reach (compactPattern()): which entries of values_ were
+    // nonzero, and L compressed to the entries kept (column by column).
+    std::vector<std::uint64_t> nonzero_;  ///< 0 or 1, as wide as the values compared
+    std::vector<char> mark_;
+    std::vector<int> columnHead_;  ///< per column: its first kept entry (-1: none yet)
+    std::vector<int> columnTail_;
+    std::vector<int> keptRow_;   ///< per kept entry (compactReach_'s order): its row
+    std::vector<int> keptNext_;  ///< the next kept entry of its column, -1 for none
+    std::vector<int> compactCount_;
+    std::vector<int> compactStart_;
+    std::vector<int> compactIndex_;
+    std::vector<Real> compactValue_;
+    std::vector<int> compactReachStart_;
+    std::vector<CompactReach> compactReach_;
     std::vector<Real> work_;
     std::vector<Real> delta_;
     std::vector<char> active_;
     std::vector<char> wanted_;   ///< the next round's active set
     std::vector<char> stale_;    ///< per element: findStaleThreads() marked it
     std::vector<Vec3> endSpan_;  ///< per element: the span it found
+    bool compacted_ = false;     ///< compactPattern() holds nonzero_'s pattern
+    bool compactWorth_ = false;  ///< the last factorWhole()'s solves met 3/4 zeros
     bool settled_ = false;
     bool factored_ = false;
 };
