@@ -25,7 +25,7 @@ SolverStats SolveStage::runSoft(BodyStore& bodies, const ShapeStore& shapes,
         loadSolverBodies(bodies, context.h / n);
         constraints = buildConstraints(bodies, shapes, contacts, context);
         if (anchored)
-            seatSoftAnchors(bodies, contacts, constraints, context, lengths);
+            seatSoftAnchors(bodies, contacts, constraints, lengths);
         // The cache holds the step's sums: each substep starts from its share of them.
         const Real share = Real(1) / n;
         for (ContactConstraint& c : constraints) {
@@ -57,21 +57,22 @@ SolverStats SolveStage::runSoft(BodyStore& bodies, const ShapeStore& shapes,
 }
 
 // The anchors' drifts as the default step's (holdAnchors): at the step's start, where the
-// manifold's points were collided, plus the bend of the points' paths over the step, plus what
-// the substeps slid them by (addSoftSlips). The substeps' friction rows hold velocities on the
-// levers of the step's start, as Box2D v3's and Jolt's (neither holds places), so sticking
-// points still stray (without anchors the slab's cube of SceneSolver.FrictionAnchorsFromTheFile...
-// crept 36 mm in 2 s at 3 x 45). Measured from the anchors' places after the substeps instead,
-// the drift held the cycloid along which a rolling ball's material points leave its contact,
-// R theta^3 / 6 a step, and the pass slowed validate's rolling-resistance ball on its slope by
-// 1.8e-3 (limit 1e-6).
+// manifold's points were collided, plus what the substeps slid them by and the bend of the
+// points' paths as the substeps turned them (addSoftSlips). The substeps' friction rows hold
+// velocities on the levers of the step's start, as Box2D v3's and Jolt's (neither holds places), so
+// sticking points still stray (without anchors the slab's cube of
+// SceneSolver.FrictionAnchorsFromTheFile... crept 36 mm in 2 s at 3 x 45). Measured from the
+// anchors' places after the substeps instead, the drift held the cycloid along which a rolling
+// ball's material points leave its contact, R theta^3 / 6 a step, and the pass slowed validate's
+// rolling-resistance ball on its slope by 1.8e-3 (limit 1e-6).
 void SolveStage::seatSoftAnchors(const BodyStore& bodies, const ContactManager& contacts,
                                  std::span<const ContactConstraint> constraints,
-                                 const StepContext& context, const AnchorLengths& lengths) {
+                                 const AnchorLengths& lengths) {
     anchors_.beginSolve();
     anchorDrifts_.assign(4 * constraints.size(), Vec3::Zero());
+    // No bend predicted here (h = 0): addSoftSlips adds the one the substeps' turn made.
     for (std::size_t j = 0; j < constraints.size(); ++j)
-        anchorDrift(bodies, contacts, j, constraints[j], context.h, lengths);
+        anchorDrift(bodies, contacts, j, constraints[j], 0, lengths);
 }
 
 // What the substeps' velocities, those the positions move with, slid each point by on the
@@ -81,14 +82,23 @@ void SolveStage::seatSoftAnchors(const BodyStore& bodies, const ContactManager& 
 // from each substep's (that was 2.7 % of a soft pyramid's step). Not the anchors' places after
 // the substeps: those part along the cycloid of a rolling ball's material points,
 // R theta^3 / 6, which no slip made (see seatSoftAnchors).
+//
+// Plus the bend of the material points' paths, theta x (theta x r) / 2 of the summed turn
+// (with a constant spin the default step's w x (w x r) h^2 / 2). Predicted from the spin of the
+// step's start instead, it took what the soft normal rows leave: a cylinder rolling at 100
+// rad/s on its line contact tips at ~1e-3 rad/s, which bent the line's ends by
+// +-20 w_x h^2 / 2 along the roll; the pass yawed it, the yaw tipped it more (x1.4 a step), and
+// at 10 m/s it rolled backwards after 4 s (3 x 45; RollingHalfSpaceSteps).
 void SolveStage::addSoftSlips(std::span<const ContactConstraint> constraints) {
     for (std::size_t j = 0; j < constraints.size(); ++j) {
         const ContactConstraint& c = constraints[j];
         const BodyDisplacement& a = moved_[c.bodyA];
         const BodyDisplacement& b = moved_[c.bodyB];
         for (int i = 0; i < c.pointCount; ++i) {
-            const Vec3 d = (b.translation + b.turn.cross(c.points[i].rB)) -
-                           (a.translation + a.turn.cross(c.points[i].rA));
+            const Vec3 turnedB = b.turn.cross(c.points[i].rB);
+            const Vec3 turnedA = a.turn.cross(c.points[i].rA);
+            const Vec3 d = (b.translation + turnedB + 0.5 * b.turn.cross(turnedB)) -
+                           (a.translation + turnedA + 0.5 * a.turn.cross(turnedA));
             anchorDrifts_[4 * j + i] += d - d.dot(c.normal) * c.normal;
         }
     }

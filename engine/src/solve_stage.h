@@ -86,7 +86,7 @@ private:
     /// The soft step's friction anchors (soft_step.cpp): their drifts as the default step's,
     /// at the step's start; after the substeps, the anchor pass as one displacement.
     void seatSoftAnchors(const BodyStore& bodies, const ContactManager& contacts,
-                         std::span<const ContactConstraint> constraints, const StepContext& context,
+                         std::span<const ContactConstraint> constraints,
                          const AnchorLengths& lengths);
     void addSoftSlips(std::span<const ContactConstraint> constraints);
     void holdSoftAnchors(BodyStore& bodies, std::span<const ContactConstraint> constraints,
