@@ -191,11 +191,7 @@ bool SpringBlockSolver::factorWhole() {
             continue;
         }
         zeroRow_[k] = 0;
-        work_[k] = 0;
-        for (int p = columnStart_[k]; p < columnStart_[k + 1]; ++p)
-            work_[rowIndex_[p]] += values_[p];
-        Real d = work_[k];
-        work_[k] = 0;
+        Real d = scatterColumn(k);
         for (int q = reachStart_[k]; q < reachStart_[k + 1]; ++q) {
             const Reach& r = reach_[q];
             const Real yi = work_[r.column];
@@ -227,6 +223,17 @@ bool SpringBlockSolver::factorWhole() {
     return true;
 }
 
+// Column k of K's lower triangle scattered into work_ (from +0), its diagonal taken out and
+// returned: where both factorisations start row k of L.
+Real SpringBlockSolver::scatterColumn(int k) {
+    work_[k] = 0;
+    for (int p = columnStart_[k]; p < columnStart_[k + 1]; ++p)
+        work_[rowIndex_[p]] += values_[p];
+    const Real d = work_[k];
+    work_[k] = 0;
+    return d;
+}
+
 bool SpringBlockSolver::factorCompact() {
     // ldl_numeric as factorWhole(), over the columns compactPattern() kept.
     const int n = static_cast<int>(diagonal_.size());
@@ -237,11 +244,7 @@ bool SpringBlockSolver::factorCompact() {
             diagonal_[k] = 1;
             continue;
         }
-        work_[k] = 0;
-        for (int p = columnStart_[k]; p < columnStart_[k + 1]; ++p)
-            work_[rowIndex_[p]] += values_[p];
-        Real d = work_[k];
-        work_[k] = 0;
+        Real d = scatterColumn(k);
         // The columns left out have y = +0 (work_ never holds -0: it sums from +0 and
         // subtracts, and x - x is +0), and so have the entries left out of a column: each
         // subtracted only +0 * y, which changes no value.

@@ -126,6 +126,7 @@ private:
     bool factor();
     bool factorWhole();
     bool factorCompact();
+    Real scatterColumn(int k);
     /// delta = -K^-1 residual over the active rows (in original row order).
     void computeUpdate(std::span<const SolverBody> bodies);
     /// work_ = -residual of each active row, in the ordering's positions; 0 for the others.
