@@ -28,49 +28,70 @@ Transform segmentPose(const Vec3& a, const Vec3& b) {
     return Transform{Vec3((a + b) / 2), turn.normalized()};
 }
 
-// How node `index` (a body with shapes) touches body `s`, for a row of normal `normal`: it rests
-// on s on the row's side when one of its contacts with s has a point whose normal (from s to
-// the node) is within ~40 degrees of the row's. Nodes on either side of a thin wall only touch
-// it (their normals are the wall's, the rim's row points up).
+// How a node touches body `s`, for a row of normal `normal`: it rests on s on the row's side
+// when one of its contacts with s has a point whose normal (from s to the node) is within ~40
+// degrees of the row's. Nodes on either side of a thin wall only touch it (their normals are the
+// wall's, the rim's row points up). `facesAway`: one of those normals points away from the
+// thread's other node, along `away` (the thread's axis from that node), by more than 30 degrees
+// out of the plane normal to the thread.
 enum class Touch { None, Touches, RestsOnSide };
 
-Touch nodeTouch(std::span<const ThreadContacts::NodeContact> nodeContacts, std::uint32_t s,
-                const Vec3& normal) {
-    constexpr Real kSameSide = 0.75;  // cos ~41 degrees
+struct NodeTouch {
     Touch touch = Touch::None;
+    bool facesAway = false;
+};
+
+NodeTouch nodeTouch(std::span<const ThreadContacts::NodeContact> nodeContacts, std::uint32_t s,
+                    const Vec3& normal, const Vec3& away) {
+    constexpr Real kSameSide = 0.75;  // cos ~41 degrees
+    constexpr Real kAway = 0.5;       // sin 30 degrees
+    NodeTouch touch;
     for (const ThreadContacts::NodeContact& contact : nodeContacts) {
         if (contact.body != s)
             continue;
         if (contact.out.dot(normal) > kSameSide)
-            return Touch::RestsOnSide;
-        touch = Touch::Touches;
+            touch.touch = Touch::RestsOnSide;
+        else if (touch.touch == Touch::None)
+            touch.touch = Touch::Touches;
+        touch.facesAway = touch.facesAway || contact.out.dot(away) > kAway;
     }
     return touch;
 }
 
-// The row's separation and push-out from how its nodes touch its shape S (`touchA`, and
-// `touchB()` asked only when A touches). Where both nodes rest on S on the row's side, their
-// contacts carry the thread: the row allows a sag of up to one radius, 4 t (1 - t) r, and
-// pushes out no depth (velocity only; the nodes' contacts correct the positions). The chord
-// between two nodes resting on a convex wall of radius R lies L^2 / (8 R) inside the line of the
-// wall through them, and a capsule as thick as the nodes held them that far off it, where they
-// swung free (an 8 x 8 net on a 24-sided cylinder of r = 0.15 m: 12 mm/s after 2 s). The sag
-// alone, with the rows' push-out, stretched the threads over the cylinder's rim until they
-// slipped (energy gained); without the side test the net slid over dustbin-mesh's thin rim,
-// whose nodes rest on the wall's two faces. Where both nodes touch S at all (on any side) the
-// row pushes out no depth either: on a thin rim a thread between two nodes on its edge lies
-// along the wall with its axis ~1 mm off the wall's plane, its rows' face normal sideways;
-// their push, against the nodes' own contacts on the edge, held the rows at the slop and pumped
-// the net (an 8 x 8 net across an open 24-sided bin of r = 0.15 m: 3.1 mm/s after 2 s, kinetic
-// energy steady at 1e-4 - 7e-4 J over 6 s; without those rows' push below 0.05 mm/s).
-template <class TouchB>
-void setDepth(SegmentContactRow& row, Real separation, Real radius, Touch touchA,
-              const TouchB& touchB) {
-    const Touch b = touchA != Touch::None ? touchB() : Touch::None;
-    const bool resting = touchA == Touch::RestsOnSide && b == Touch::RestsOnSide;
+}  // namespace
+
+// Where both nodes rest on S on the row's side, their contacts carry the thread: the row allows
+// a sag of up to one radius, 4 t (1 - t) r, and pushes out no depth (velocity only; the nodes'
+// contacts correct the positions). The chord between two nodes resting on a convex wall of
+// radius R lies L^2 / (8 R) inside the line of the wall through them, and a capsule as thick as
+// the nodes held them that far off it, where they swung free (an 8 x 8 net on a 24-sided
+// cylinder of r = 0.15 m: 12 mm/s after 2 s). The sag alone, with the rows' push-out, stretched
+// the threads over the cylinder's rim until they slipped (energy gained); without the side test
+// the net slid over dustbin-mesh's thin rim, whose nodes rest on the wall's two faces.
+//
+// Where both nodes touch S otherwise, the row pushes out no depth either when the thread lies
+// along S's rim: between two nodes on a thin rim the thread lies along the wall with its axis ~1
+// mm off the wall's plane, its rows' face normal sideways; their push, against the nodes' own
+// contacts on the edge, held the rows at the slop and pumped the net (an 8 x 8 net across an
+// open 24-sided bin of r = 0.15 m: 3.1 mm/s after 2 s; without those rows' push below 0.05
+// mm/s). A thread crossing over an edge instead -- each node's contact facing away from the
+// other node, so the edge lies between them -- keeps its depth and push: held, the rows of a net
+// landing across a thin wall's edge sank 10.7 mm over it while their nodes touched the wall's two
+// faces, and when a node left the wall the push resumed at its cap (+58 mJ in one step,
+// ThreadRestThinWall).
+void setRowDepth(SegmentContactRow& row, Real separation, Real radius, const Vec3& axis,
+                 std::span<const ThreadContacts::NodeContact> contactsA,
+                 std::span<const ThreadContacts::NodeContact> contactsB, std::uint32_t s) {
+    const NodeTouch a = nodeTouch(contactsA, s, row.normal, Vec3(-axis));
+    const NodeTouch b =
+        a.touch != Touch::None ? nodeTouch(contactsB, s, row.normal, axis) : NodeTouch{};
+    const bool resting = a.touch == Touch::RestsOnSide && b.touch == Touch::RestsOnSide;
+    const bool crossing = a.facesAway && b.facesAway;
     row.separation = separation + (resting ? 4 * radius * row.t * (1 - row.t) : 0);
-    row.pushOut = touchA == Touch::None || b == Touch::None;
+    row.pushOut = a.touch == Touch::None || b.touch == Touch::None || (crossing && !resting);
 }
+
+namespace {
 
 // A thread through a thin sheet of a mesh (nodes on either side of an open bin's wall) leaves
 // over the sheet's edge: its one contact replaces the capsule's manifolds, whose face normal
@@ -206,7 +227,9 @@ void ThreadContacts::collideThread(std::uint32_t index, const SpringStore& sprin
             continue;
         leaveOverBorder(shape.def.geometry, shapeAt, pA, pB, def.contactRadius, manifolds_);
         const std::uint32_t s = bodies.indexOf(shape.body);
+        // Without shapes at both ends, the rows push out (no node contact carries the thread).
         const bool shapedEnds = trimA > 0 && trimB > 0;
+        constexpr std::span<const NodeContact> noContacts;
         for (int m = 0; m < manifolds_.count; ++m) {
             const Manifold& manifold = manifolds_.manifolds[m];
             for (int k = 0; k < manifold.pointCount; ++k) {
@@ -222,11 +245,9 @@ void ThreadContacts::collideThread(std::uint32_t index, const SpringStore& sprin
                 row.rB = world ? Vec3::Zero() : Vec3(pB - bodies.motion[b].center);
                 row.rS = point.position - bodies.motion[s].center;
                 row.normal = -manifold.normal;  // the manifold's runs from the capsule to S
-                setDepth(
-                    row, point.separation, def.contactRadius,
-                    shapedEnds ? nodeTouch(nodeContacts(a, bodies, contacts), s, row.normal)
-                               : Touch::None,
-                    [&] { return nodeTouch(nodeContacts(b, bodies, contacts), s, row.normal); });
+                setRowDepth(row, point.separation, def.contactRadius, axis,
+                            shapedEnds ? nodeContacts(a, bodies, contacts) : noContacts,
+                            shapedEnds ? nodeContacts(b, bodies, contacts) : noContacts, s);
                 row.friction = mixFriction(def.contactFriction, shape.def.material.friction);
                 keys_.push_back(Cached{.spring = index, .slot = slot});
                 warmStart(row, index, slot, length, def.contactRadius);

@@ -102,4 +102,15 @@ private:
     ManifoldSet manifolds_;                   ///< scratch
 };
 
+/// The depth rule of a thread's row against body `s` (dense index): sets `row.separation` from
+/// the capsule's `separation` (m) and `row.pushOut`, from how the thread's nodes touch s
+/// (`contactsA`, `contactsB`: their active contacts; empty for a node without shapes). `axis` is
+/// the thread's unit direction from A to B, `radius` its contact radius (m); reads row.t and
+/// row.normal. Rows push out their full depth unless both nodes touch s and the thread either
+/// rests on them on the row's side (a sag of up to one radius allowed, no push) or, not crossing
+/// over an edge between them, lies along s's rim (no push); details in thread_contacts.cpp.
+void setRowDepth(SegmentContactRow& row, Real separation, Real radius, const Vec3& axis,
+                 std::span<const ThreadContacts::NodeContact> contactsA,
+                 std::span<const ThreadContacts::NodeContact> contactsB, std::uint32_t s);
+
 }  // namespace tumble
