@@ -10,7 +10,8 @@
 /// margin) is tested against the static and kinematic shapes (box by box when they are few, else
 /// through the broadphase) and the capsule collided with every one it meets, through the
 /// ordinary narrowphase. Where a node has shapes of its own, the capsule starts a radius away
-/// from it: what lies nearer is the node's own contacts'.
+/// from it: what lies nearer is the node's own contacts', as is a capsule point whose surface
+/// point on the shape lies inside the node's sphere (the end cap reaches past the trim).
 ///
 /// Rows are warm started as the contacts are: each takes the impulses the previous step's
 /// nearest row of the same spring and shape ended with (its point within a contact radius along
