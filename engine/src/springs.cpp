@@ -26,7 +26,7 @@ struct End {
 End endOf(const BodyStore& bodies, BodyId body, const Vec3& localAnchor) {
     if (body.isNull())
         return {kWorld, localAnchor};
-    const std::uint32_t i = bodies.indexOf(body);
+    const std::uint32_t i = bodies.checkedIndexOf(body);
     const Vec3 position = anchorAt(bodies, i, localAnchor);
     return {i, position, position - bodies.motion[i].center, bodies.isAwakeDynamic(i)};
 }
@@ -36,7 +36,7 @@ End endOf(const BodyStore& bodies, BodyId body, const Vec3& localAnchor) {
 Real endInverseMass(const BodyStore& bodies, BodyId body) {
     if (body.isNull())
         return 0;
-    const std::uint32_t i = bodies.indexOf(body);
+    const std::uint32_t i = bodies.checkedIndexOf(body);
     return bodies.isAwakeDynamic(i) ? bodies.inertia[i].inverseMass : 0;
 }
 
