@@ -427,6 +427,10 @@ int discreteGradientSubsteps(Real squared) {
     return std::max(1, static_cast<int>(std::sqrt(squared / kDampedFrom)));
 }
 
+Real discreteGradientBandStart() {
+    return kDiscreteGradientFrom;
+}
+
 bool springRowUnresolved(const SpringRow& row, Real h) {
     if (row.mass <= 0)
         return false;

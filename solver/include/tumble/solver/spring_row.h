@@ -233,6 +233,10 @@ void lineariseThreadTurn(const SolverBody& a, const SolverBody& b, const SpringR
 /// does not take the gradient at h.
 int discreteGradientSubsteps(Real squared);
 
+/// The (omega h)^2 from which an undamped thread takes the discrete gradient: below it,
+/// discreteGradientSubsteps is 0.
+Real discreteGradientBandStart();
+
 /// Whether a prepared row's element is one the step does not resolve ((omega h)^2 >= 4): its
 /// scheme damps it, and its turning within the step wants post-stabilisation.
 bool springRowUnresolved(const SpringRow& row, Real h);
