@@ -28,9 +28,9 @@ void buildSpringRows(const SpringStore& springs, const BodyStore& bodies, Real h
         const SpringDef& def = springs.defs[i];
         if (def.formulation == SpringFormulation::Explicit)
             continue;
-        const std::uint32_t a = bodies.indexOf(def.bodyA);
+        const std::uint32_t a = bodies.checkedIndexOf(def.bodyA);
         const bool world = def.bodyB.isNull();
-        const std::uint32_t b = world ? 0 : bodies.indexOf(def.bodyB);
+        const std::uint32_t b = world ? 0 : bodies.checkedIndexOf(def.bodyB);
         if (!bodies.isAwakeDynamic(a) && (world || !bodies.isAwakeDynamic(b)))
             continue;
         // Built in place: a default row copied in (~300 B each) was a share of the nets' step.

@@ -213,6 +213,10 @@ void ContactRows::scatter(const Bundle& bundle, const Lane (&v)[2][6]) {
 Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                         std::span<NormalFactor> factors, const SolverSettings& settings, Real bias,
                         Real inverseH, bool soft) {
+    // No contact rows (a net in flight): copying every body's velocity in and out again changes
+    // nothing, and was 5 % of the net-10 step (10 sweeps over 101 bodies).
+    if (bundles_.empty())
+        return 0;
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         for (int k = 0; k < 3; ++k) {
             velocities_[i].v[k] = bodies[i].linearVelocity[k];

@@ -396,11 +396,15 @@ bool SpringBlockSolver::refreshTransverseRows(std::span<SolverBody> bodies) {
         // A discrete-gradient thread's turn rows do not depend on its tension.
         if (!row.geometricStiffness || !usable(row) || row.discreteGradient)
             continue;
+        // What its rows were built with is >= 0: an element that ends without tension (most of a
+        // flying net's threads) cannot leave more of it explicit, and skips the division.
+        const Real solved = -(row.impulse + row.knownImpulse) / h_;
+        if (!(solved > 0))
+            continue;
         // (omega_t h)^2 per newton of tension; the rows hold what they were built with, if any.
         const Real perTension =
             h_ * h_ * (bodies[row.bodyA].inverseMass + bodies[row.bodyB].inverseMass) / row.length;
         const Real built = tension_[i] * perTension >= kResolvedTransverse ? tension_[i] : 0;
-        const Real solved = -(row.impulse + row.knownImpulse) / h_;
         stale = (solved - built) * perTension >= kExplicitTransverseLimit;
     }
     if (!stale)

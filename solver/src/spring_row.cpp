@@ -93,7 +93,8 @@ Gradient threadGradient(Real k, Real c0, Real c1) {
 // slope in x1, by the levels' signs (spring_row.h): Phi(x0, x1) - Phi(xm, x0) = (x1+ - xm+)
 // (beta (x1+ + xm+) + (1 - 2 beta) x0+). The slope's divided difference is written out: at
 // x1 ~ xm it cancels to rounding.
-Gradient levelGradient(Real xm, Real x0, Real x1) {
+// Inlined: called ~4 times per row and per round; the call was a share of the net-10 step.
+[[gnu::always_inline]] inline Gradient levelGradient(Real xm, Real x0, Real x1) {
     constexpr Real beta = kFoxGoodwin;
     const Real p0 = std::max<Real>(x0, 0);
     if (xm >= 0 && x1 >= 0)  // taut at both ends: Fox-Goodwin's weights
@@ -136,19 +137,14 @@ Real stretchAlone(const GradientAt& gradientAt, Real lo, Real free, Real weight,
 }
 
 // The row's Jacobians along its direction, and J M^-1 J'.
-Real setJacobians(const SolverBody& a, const SolverBody& b, SpringRow& row) {
+[[gnu::always_inline]] inline Real setJacobians(const SolverBody& a, const SolverBody& b,
+                                                SpringRow& row) {
     row.angularA = row.rA.cross(row.direction);
     row.angularB = row.rB.cross(row.direction);
     row.angularImpulseA = a.inverseInertia * row.angularA;
     row.angularImpulseB = b.inverseInertia * row.angularB;
     return a.inverseMass + b.inverseMass + row.angularA.dot(row.angularImpulseA) +
            row.angularB.dot(row.angularImpulseB);
-}
-
-// Anchor B's velocity minus anchor A's with the bodies' current velocities (m/s).
-Vec3 anchorSpeed(const SolverBody& a, const SolverBody& b, const SpringRow& row) {
-    return b.linearVelocity + b.angularVelocity.cross(row.rB) - a.linearVelocity -
-           a.angularVelocity.cross(row.rA);
 }
 
 // The end-of-step stretch c1 of a thread alone between its bodies: the root of c1 + (h^2 / 2)
@@ -183,12 +179,6 @@ void implicitEulerThreadRow(const SolverBody& a, const SolverBody& b, SpringRow&
     row.bias = row.stiffness * (row.length - row.restLength) / resistance;
 }
 
-Real threadRowEndStretch(const SolverBody& a, const SolverBody& b, const SpringRow& row, Real h,
-                         Vec3& endSpan) {
-    endSpan = row.span + h * anchorSpeed(a, b, row);
-    return endSpan.norm() - row.restLength;
-}
-
 namespace {
 
 // A direction with the components it owes to rounding alone set to zero. x_-1 = x0 - h v0 picks up
@@ -212,16 +202,17 @@ void lineariseLevelRow(const SolverBody& a, const SolverBody& b, SpringRow& row,
     const Real xm = row.lastStretch;
     const Real x0 = row.length - row.restLength;
     Vec3 end = endSpan;
-    Real x1 = end.norm() - row.restLength;
+    const Real endLength = end.norm();
+    Real x1 = endLength - row.restLength;
     const Real floor = kCatchFloor * row.restLength;
-    if (x1 < floor && !(levelGradient(xm, x0, x1).slope > 0)) {
+    Gradient g = levelGradient(xm, x0, x1);
+    if (x1 < floor && !(g.slope > 0)) {
         // Just past the rest length, along the span's line: the slope is 0 below it.
-        const Real endLength = end.norm();
         end = (endLength > kMinimumLength ? Vec3(end / endLength) : row.direction) *
               (row.restLength + floor);
         x1 = floor;
+        g = levelGradient(xm, x0, x1);
     }
-    const Gradient g = levelGradient(xm, x0, x1);
     const Vec3 mid = row.span - h * row.startVelocity + end;
     const Real midLength = mid.norm();
     if (midLength > kMinimumLength)
@@ -271,11 +262,6 @@ void prepareResolvedThread(const SolverBody& a, const SolverBody& b, SpringRow& 
 }
 
 }  // namespace
-
-bool threadRowPulls(const SpringRow& row) {
-    return (row.discreteGradient && row.length >= row.restLength) ||
-           (row.levelGradient && row.lastStretch > 0);
-}
 
 bool threadRowStale(const SolverBody& a, const SolverBody& b, const SpringRow& row, Real h,
                     Vec3& endSpan) {
@@ -439,6 +425,10 @@ int discreteGradientSubsteps(Real squared) {
     if (!(squared >= kDiscreteGradientFrom && squared <= kDiscreteGradientUpTo))
         return 0;
     return std::max(1, static_cast<int>(std::sqrt(squared / kDampedFrom)));
+}
+
+Real discreteGradientBandStart() {
+    return kDiscreteGradientFrom;
 }
 
 bool springRowUnresolved(const SpringRow& row, Real h) {
