@@ -34,6 +34,15 @@ void applyAngular(SolverBody& a, SolverBody& b, const Vec3& impulse) {
 // axes T per unit angular impulse; bodies that cannot turn (static, translation-only) give none.
 void prepareAngularFriction(const SolverBody& a, const SolverBody& b, ContactConstraint& c,
                             bool warmStart) {
+    if (c.spinningFriction == 0 && c.rollingFriction == 0) {
+        // No rows (most manifolds): what the general path gives them, without the effective
+        // masses and the norms of every point (angularReach is only read with angular rows).
+        c.spinMass = 0;
+        c.rollingActive = false;
+        c.angularReach = 0;
+        c.angularImpulse = Vec3::Zero();
+        return;
+    }
     const Mat3 inverseInertia = a.inverseInertia + b.inverseInertia;
     const Real kSpin = c.normal.dot(inverseInertia * c.normal);
     c.spinMass = c.spinningFriction > 0 && kSpin > 0 ? 1 / kSpin : 0;

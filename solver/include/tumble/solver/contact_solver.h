@@ -153,7 +153,8 @@ struct ContactConstraint {
     std::array<Vec3, 2> tangents{Vec3::UnitX(), Vec3::UnitY()};
     Real spinMass = 0;           ///< 1 / n'(IA^-1 + IB^-1) n (kg m^2); 0: no spinning row
     bool rollingActive = false;  ///< rolling rows solved this step
-    Real angularReach = 0;       ///< farthest point from either centre of mass (m)
+    /// Farthest point from either centre of mass (m); 0 without spinning and rolling friction.
+    Real angularReach = 0;
     /// K_ij: normal velocity change at point i per unit normal impulse at point j (1/kg).
     Eigen::Matrix<Real, 4, 4> normalBlock = Eigen::Matrix<Real, 4, 4>::Zero();
     DiscBlock rolling;  ///< K of the relative spin about the tangents (1/(kg m^2))

@@ -86,8 +86,13 @@ public:
     void store(std::span<ContactConstraint> constraints) const;
 
 private:
+    /// The points added since clear().
+    std::span<SweepPoint> points() { return {points_.data(), pointCount_}; }
+
     std::vector<SweepManifold> manifolds_;
+    /// The first pointCount_ are this step's; the rest is storage kept for the next steps.
     std::vector<SweepPoint> points_;
+    std::size_t pointCount_ = 0;
     std::vector<Eigen::Matrix<Real, 4, 4>> blocks_;  ///< normal blocks (normal_block.h)
     std::vector<std::uint32_t> grouped_;             ///< manifolds with grouped normal rows
 };
