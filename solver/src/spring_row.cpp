@@ -367,9 +367,15 @@ namespace {
            row.angularB.dot(row.angularImpulseB);
 }
 
-// prepareSpringRow(); mayDefer: a resolved thread slack at both levels is left `deferred` after
-// its levels (spring_row.h), its Jacobians those of its start line.
-void prepareRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h, bool mayDefer) {
+// Whether the row's warm start comes out +0 whatever its mass (prepareSpringRows).
+bool noWarmStart(const SpringRow& row, bool warmStart) {
+    return !warmStart || row.impulse > 0 || (row.impulse == 0 && !std::signbit(row.impulse));
+}
+
+// prepareSpringRow(); mayDefer: a resolved thread slack at both levels and without a warm start
+// is left `deferred` after its levels (spring_row.h), its Jacobians those of its start line.
+void prepareRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h, bool mayDefer,
+                bool warmStart) {
     row.knownImpulse = 0;
     row.deferred = false;
     row.angularA = row.rA.cross(row.direction);
@@ -388,7 +394,8 @@ void prepareRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h
     if (undampedThread && squared < kDiscreteGradientFrom && row.length >= kMinimumLength &&
         inverseMass > 0) {
         startResolvedThread(row, h);
-        if (mayDefer && row.length < row.restLength && !(row.lastStretch > 0)) {
+        if (mayDefer && row.length < row.restLength && !(row.lastStretch > 0) &&
+            noWarmStart(row, warmStart)) {
             row.deferred = true;
             return;
         }
@@ -456,7 +463,7 @@ bool noNegativeZero(const SolverBody& body) {
 }  // namespace
 
 void prepareSpringRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h) {
-    prepareRow(a, b, row, h, false);
+    prepareRow(a, b, row, h, false, false);
 }
 
 void finishSpringRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h) {
@@ -496,11 +503,9 @@ void prepareSpringRows(std::span<SolverBody> bodies, std::span<SpringRow> rows, 
     for (SpringRow& row : rows) {
         SolverBody& a = bodies[row.bodyA];
         SolverBody& b = bodies[row.bodyB];
-        // Deferred only where the row's warm start comes out +0, whatever its mass, and applying
-        // it changes no bit: then skipping it is the same step.
-        const bool noWarmStart =
-            !warmStart || row.impulse > 0 || (row.impulse == 0 && !std::signbit(row.impulse));
-        prepareRow(a, b, row, h, deferSlackThreads && noWarmStart);
+        prepareRow(a, b, row, h, deferSlackThreads, warmStart);
+        // Deferred only where its warm start is +0 and applying it changes no bit: then skipping
+        // it is the same step.
         if (row.deferred) {
             row.impulse = 0;
             if (noNegativeZero(a) && noNegativeZero(b))
