@@ -281,13 +281,22 @@ SolveStage::ProjectedGeometry SolveStage::projectedGeometry(const BodyStore& bod
     const RowBodies& ends = rowBodies_[j];  // the bodies cannot change within a step
     const Vec3 pA = anchorAt(bodies, ends.a, def.localAnchorA);
     const Vec3 pB = ends.world ? def.localAnchorB : anchorAt(bodies, ends.b, def.localAnchorB);
-    const Vec3 d = pB - pA;
+    const Vec3 d = pB - pA;  // projectedSpan()
     ProjectedGeometry row;
     row.length = d.norm();
     row.direction = row.length > 0 ? Vec3(d / row.length) : solved.direction;
     row.rA = pA - bodies.motion[ends.a].center;
     row.rB = ends.world ? Vec3::Zero() : Vec3(pB - bodies.motion[ends.b].center);
     return row;
+}
+
+Vec3 SolveStage::projectedSpan(const BodyStore& bodies, const SpringStore& springs,
+                               std::size_t j) const {
+    const SpringDef& def = springs.defs[rowSpring_[j]];
+    const RowBodies& ends = rowBodies_[j];
+    const Vec3 pA = anchorAt(bodies, ends.a, def.localAnchorA);
+    const Vec3 pB = ends.world ? def.localAnchorB : anchorAt(bodies, ends.b, def.localAnchorB);
+    return pB - pA;
 }
 
 // What each row must correct at the positions the step ended on (m): returns the largest. Rows
@@ -300,10 +309,23 @@ Real SolveStage::projectionErrors(const BodyStore& bodies, const SpringStore& sp
     projectionError_.resize(springRows_.size());
     Real worst = 0;
     for (std::size_t j = 0; j < springRows_.size(); ++j) {
-        const SpringRow& solved = springRows_[j];
+        SpringRow& solved = springRows_[j];
         ProjectedGeometry& row = projectedGeometry_[j];
-        const bool taut = !solved.tensionOnly || solved.impulse < 0;
         projectionError_[j] = 0;
+        if (solved.deferred) {
+            // Slack at the step's start and never caught (no impulse): no error unless its ends
+            // now lie past its rest length, whichever scheme owns it. Only then is the rest of
+            // its preparation read.
+            const Real length = projectedSpan(bodies, springs, j).norm();  // as the geometry's
+            if (length > 0 &&
+                length - solved.restLength <= kNegligibleStretch * solved.restLength) {
+                row.length = -1;
+                continue;
+            }
+            finishSpringRow(solverBodies_[solved.bodyA], solverBodies_[solved.bodyB], solved,
+                            context.h);
+        }
+        const bool taut = !solved.tensionOnly || solved.impulse < 0;
         // A resolved element's turning and catch are the scheme's own second-order error
         // (spring_row.h); correcting them made the net-10 sweep's error 2-3x larger at h =
         // 1/240 ... 1/2000. A discrete-gradient thread's row is linearised at its end-of-step

@@ -98,6 +98,8 @@ private:
     /// Row j's geometry at the new positions, for projectSprings().
     ProjectedGeometry projectedGeometry(const BodyStore& bodies, const SpringStore& springs,
                                         std::size_t j) const;
+    /// Row j's anchor B minus anchor A at the new positions (m).
+    Vec3 projectedSpan(const BodyStore& bodies, const SpringStore& springs, std::size_t j) const;
     /// projectSprings()'s rows' errors at the new positions (and the geometry of those that may
     /// have one); returns the largest (m).
     Real projectionErrors(const BodyStore& bodies, const SpringStore& springs,

@@ -56,8 +56,10 @@ Real ConstraintSolver::prepare(std::span<SolverBody> bodies,
         applyJointGeometricStiffness(bodies, joints, h, geometricStiffness_);
     const Real deepestPenetration = contacts_.prepare(bodies, constraints, h, settings);
     prepareSegmentContacts(bodies, segments_, settings.warmStart);
-    prepareSpringRows(bodies, springs, h, settings.warmStart);
     directSprings_ = settings.springSolve == SpringSolve::Direct && !springs.empty();
+    // The block solve prepares a slack thread when it reads it (spring_row.h); Gauss-Seidel
+    // reads every row.
+    prepareSpringRows(bodies, springs, h, settings.warmStart, directSprings_);
     if (directSprings_)
         springBlock_.prepare(bodies, springs, h);
     joints_ = joints;

@@ -235,6 +235,9 @@ void SpringBlockSolver::start(std::span<const SolverBody> bodies) {
         active_[i] = active_[owner_[i - elementCount_]];
     assemble(bodies);
     factored_ = factor();
+    // The caller then solves every row by Gauss-Seidel.
+    if (!factored_)
+        finishSpringRows(bodies, elements_, h_);
 }
 
 void SpringBlockSolver::loadResiduals(std::span<const SolverBody> bodies) {
@@ -343,10 +346,12 @@ Real SpringBlockSolver::relaxSlackRows(std::span<SolverBody> bodies) {
         if (active_[i])
             continue;
         SpringRow& r = row(i);
-        if (!r.tensionOnly || !usable(r))
-            continue;
         SolverBody& a = bodies[r.bodyA];
         SolverBody& b = bodies[r.bodyB];
+        if (r.deferred)
+            finishSpringRow(a, b, r, h_);
+        if (!r.tensionOnly || !usable(r))
+            continue;
         const Real residual = springRowSpeed(a, b, r) + r.bias + r.softness * r.impulse;
         const Real next = std::min<Real>(0, r.impulse - r.mass * residual);
         applySpringImpulse(a, b, r, next - r.impulse);
@@ -412,6 +417,8 @@ bool SpringBlockSolver::refreshTransverseRows(std::span<SolverBody> bodies) {
     // Undo the solve, then build the transverse rows again from its tensions.
     for (std::size_t i = 0; i < rowCount(); ++i) {
         SpringRow& r = row(i);
+        if (r.deferred)  // even a zero impulse along its Jacobians may flip a -0 velocity
+            finishSpringRow(bodies[r.bodyA], bodies[r.bodyB], r, h_);
         const Real target = i < elementCount_ ? warm_[i] : 0;
         applySpringImpulse(bodies[r.bodyA], bodies[r.bodyB], r, target - r.impulse);
         if (i < elementCount_)
@@ -505,12 +512,20 @@ Real SpringBlockSolver::settle(std::span<SolverBody> bodies) {
         // A thread that pushes goes slack; a slack one that would stretch takes load.
         bool changed = false;
         for (std::size_t i = 0; i < n; ++i) {
-            const SpringRow& r = row(i);
+            SpringRow& r = row(i);
             wanted_[i] = active_[i];
-            if (!r.tensionOnly || !usable(r))
-                continue;
             const SolverBody& a = bodies[r.bodyA];
             const SolverBody& b = bodies[r.bodyB];
+            if (r.deferred) {
+                // Slack at both levels, inactive: wanted exactly when usable and caught (below),
+                // so prepared only then.
+                Vec3 end;
+                if (!(threadRowEndStretch(a, b, r, h_, end) > kFlipSpeed * h_))
+                    continue;
+                finishSpringRow(a, b, r, h_);
+            }
+            if (!r.tensionOnly || !usable(r))
+                continue;
             // Pushes and pulls below kFlipSpeed are rounding (a net falling flat has threads at
             // exactly their rest length): flipping on them cost a refactorisation per round.
             // A discrete-gradient thread taut at the start pulls whatever its end stretch, and
@@ -552,6 +567,7 @@ Real SpringBlockSolver::settle(std::span<SolverBody> bodies) {
         assemble(bodies);
         if (!factor()) {
             factored_ = false;
+            finishSpringRows(bodies, elements_, h_);  // for the caller's Gauss-Seidel
             return change;
         }
     }

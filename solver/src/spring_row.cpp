@@ -234,14 +234,20 @@ void lineariseLevelRow(const SolverBody& a, const SolverBody& b, SpringRow& row,
                resistance;
 }
 
-// A resolved undamped thread (spring_row.h): the form's row by the true lengths, linearised at
-// its end stretch alone (the root of x1 + (omega h)^2 G(x1) = its stretch at constant velocity;
-// linear, Fox-Goodwin's, where the three levels are taut).
-void prepareResolvedThread(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h,
-                           Real squared) {
+// A resolved undamped thread's levels (spring_row.h): its start span and its stretch at the
+// level before the step.
+void startResolvedThread(SpringRow& row, Real h) {
+    row.levelGradient = true;
     row.span = row.length * row.direction;
-    const Real x0 = row.length - row.restLength;
     row.lastStretch = (row.span - h * row.startVelocity).norm() - row.restLength;
+}
+
+// A resolved undamped thread (spring_row.h), after startResolvedThread(): the form's row by the
+// true lengths, linearised at its end stretch alone (the root of x1 + (omega h)^2 G(x1) = its
+// stretch at constant velocity; linear, Fox-Goodwin's, where the three levels are taut).
+void lineariseResolvedThread(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h,
+                             Real squared) {
+    const Real x0 = row.length - row.restLength;
     const Real xm = row.lastStretch;
     const Vec3 free = row.span + h * row.startVelocity;
     const Real freeLength = free.norm();
@@ -256,7 +262,6 @@ void prepareResolvedThread(const SolverBody& a, const SolverBody& b, SpringRow& 
         x1 = stretchAlone(gradientAt, lo, freeStretch, squared,
                           kGradientTolerance * kCatchFloor * row.restLength);
     }
-    row.levelGradient = true;
     const Real toEnd = freeLength > kMinimumLength ? (row.restLength + x1) / freeLength : 1;
     lineariseLevelRow(a, b, row, h, free * toEnd);
 }
@@ -353,14 +358,31 @@ void lineariseThreadTurn(const SolverBody& a, const SolverBody& b, const SpringR
     turn.bias = 2 * turn.direction.dot(thread.span) / h;
 }
 
-void prepareSpringRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h) {
+namespace {
+
+// J M^-1 J' along the row's Jacobians as they stand.
+[[gnu::always_inline]] inline Real jacobianInverseMass(const SolverBody& a, const SolverBody& b,
+                                                       const SpringRow& row) {
+    return a.inverseMass + b.inverseMass + row.angularA.dot(row.angularImpulseA) +
+           row.angularB.dot(row.angularImpulseB);
+}
+
+// Whether the row's warm start comes out +0 whatever its mass (prepareSpringRows).
+bool noWarmStart(const SpringRow& row, bool warmStart) {
+    return !warmStart || row.impulse > 0 || (row.impulse == 0 && !std::signbit(row.impulse));
+}
+
+// prepareSpringRow(); mayDefer: a resolved thread slack at both levels and without a warm start
+// is left `deferred` after its levels (spring_row.h), its Jacobians those of its start line.
+void prepareRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h, bool mayDefer,
+                bool warmStart) {
     row.knownImpulse = 0;
+    row.deferred = false;
     row.angularA = row.rA.cross(row.direction);
     row.angularB = row.rB.cross(row.direction);
     row.angularImpulseA = a.inverseInertia * row.angularA;
     row.angularImpulseB = b.inverseInertia * row.angularB;
-    const Real inverseMass = a.inverseMass + b.inverseMass + row.angularA.dot(row.angularImpulseA) +
-                             row.angularB.dot(row.angularImpulseB);
+    const Real inverseMass = jacobianInverseMass(a, b, row);
     const Real squared = h * h * row.stiffness * inverseMass;  // (omega h)^2
     // Only threads past Fox-Goodwin's range, and not the stiffest, take the discrete gradient;
     // undamped ones within it the three-level scheme's energy-conserving form.
@@ -371,7 +393,13 @@ void prepareSpringRow(const SolverBody& a, const SolverBody& b, SpringRow& row, 
     row.levelGradient = false;
     if (undampedThread && squared < kDiscreteGradientFrom && row.length >= kMinimumLength &&
         inverseMass > 0) {
-        prepareResolvedThread(a, b, row, h, squared);
+        startResolvedThread(row, h);
+        if (mayDefer && row.length < row.restLength && !(row.lastStretch > 0) &&
+            noWarmStart(row, warmStart)) {
+            row.deferred = true;
+            return;
+        }
+        lineariseResolvedThread(a, b, row, h, squared);
         return;
     }
     if (row.discreteGradient) {
@@ -421,6 +449,38 @@ void prepareSpringRow(const SolverBody& a, const SolverBody& b, SpringRow& row, 
     row.bias = (row.stiffness * stretch - lastShare * startRate) / resistance;
 }
 
+// Whether a zero impulse applied to the body leaves every bit of its velocity: v - (+-0) is v
+// but for v = -0, which may become +0.
+bool noNegativeZero(const SolverBody& body) {
+    bool none = true;
+    for (int k = 0; k < 3; ++k) {
+        none = none && !(body.linearVelocity[k] == 0 && std::signbit(body.linearVelocity[k])) &&
+               !(body.angularVelocity[k] == 0 && std::signbit(body.angularVelocity[k]));
+    }
+    return none;
+}
+
+}  // namespace
+
+void prepareSpringRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h) {
+    prepareRow(a, b, row, h, false, false);
+}
+
+void finishSpringRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h) {
+    row.deferred = false;
+    // The start line's Jacobians are still the row's: the same (omega h)^2, bit for bit.
+    const Real squared = h * h * row.stiffness * jacobianInverseMass(a, b, row);
+    lineariseResolvedThread(a, b, row, h, squared);
+    // Its impulse is 0 whatever its mass (prepareSpringRows).
+}
+
+void finishSpringRows(std::span<const SolverBody> bodies, std::span<SpringRow> rows, Real h) {
+    for (SpringRow& row : rows) {
+        if (row.deferred)
+            finishSpringRow(bodies[row.bodyA], bodies[row.bodyB], row, h);
+    }
+}
+
 int discreteGradientSubsteps(Real squared) {
     if (!(squared >= kDiscreteGradientFrom && squared <= kDiscreteGradientUpTo))
         return 0;
@@ -439,11 +499,19 @@ bool springRowUnresolved(const SpringRow& row, Real h) {
 }
 
 void prepareSpringRows(std::span<SolverBody> bodies, std::span<SpringRow> rows, Real h,
-                       bool warmStart) {
+                       bool warmStart, bool deferSlackThreads) {
     for (SpringRow& row : rows) {
         SolverBody& a = bodies[row.bodyA];
         SolverBody& b = bodies[row.bodyB];
-        prepareSpringRow(a, b, row, h);
+        prepareRow(a, b, row, h, deferSlackThreads, warmStart);
+        // Deferred only where its warm start is +0 and applying it changes no bit: then skipping
+        // it is the same step.
+        if (row.deferred) {
+            row.impulse = 0;
+            if (noNegativeZero(a) && noNegativeZero(b))
+                continue;
+            finishSpringRow(a, b, row, h);
+        }
         row.impulse -= row.knownImpulse;  // the warm start is the whole step's impulse
         if (row.mass == 0 || !warmStart || (row.tensionOnly && row.impulse > 0))
             row.impulse = 0;

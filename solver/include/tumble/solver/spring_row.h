@@ -167,6 +167,10 @@ struct SpringRow {
     /// A thread's impulse from the scheme's known levels, -h (w0 T0 + w_1 T_-1) (N s), applied
     /// once by prepareSpringRows(); `impulse` is the rest, the part the row solves for.
     Real knownImpulse = 0;
+    /// A `levelGradient` thread slack at both levels before the step, left unlinearised by
+    /// prepareSpringRows(deferSlackThreads): its direction, Jacobians, mass, softness, bias and
+    /// `linearisedAt` are not yet the step's (finishSpringRow()); its impulse is 0.
+    bool deferred = false;
 };
 
 /// The row's impulse lambda on its bodies: lambda n on B at its anchor, -lambda n on A.
@@ -242,9 +246,20 @@ Real discreteGradientBandStart();
 bool springRowUnresolved(const SpringRow& row, Real h);
 
 /// prepareSpringRow() on every row, then applies the warm-start impulses (or zeroes them when
-/// !warmStart).
+/// !warmStart). deferSlackThreads: a `levelGradient` thread slack at both levels before the step
+/// and holding no warm start is left `deferred` (most of a net in flight): the block solve starts
+/// it inactive, and it is linearised again if caught, so its preparation is rarely read. Whoever
+/// reads it calls finishSpringRow() first, with the same bodies and h: the row is then, bit for
+/// bit, the one prepared at once.
 void prepareSpringRows(std::span<SolverBody> bodies, std::span<SpringRow> rows, Real h,
-                       bool warmStart);
+                       bool warmStart, bool deferSlackThreads = false);
+
+/// A `deferred` row's preparation, no longer deferred: the bodies' inverse masses and inertias
+/// and h as prepareSpringRows() had them (their velocities are not read).
+void finishSpringRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h);
+
+/// finishSpringRow() on every deferred row.
+void finishSpringRows(std::span<const SolverBody> bodies, std::span<SpringRow> rows, Real h);
 
 /// One Gauss-Seidel pass over the rows with over-relaxation `relaxation`; returns the largest
 /// change of a row's velocity J v caused by an update (m/s), for the solver's tolerance.
