@@ -13,6 +13,7 @@ SolverStats ConstraintSolver::solve(std::span<SolverBody> bodies,
                                     std::span<JointRow> joints,
                                     std::span<SegmentContactRow> segments) {
     segments_ = segments;
+    springs_ = springs;
     const Real inverseH = 1 / h;
     const bool split = settings.stabilisation == Stabilisation::SplitImpulse;
     // The thread contacts' push-out in a position pass of their own, not in the biased sweeps:
@@ -124,8 +125,9 @@ void ConstraintSolver::correctPositions(std::span<const SolverBody> bodies,
         sprungPushOut_.solve(pseudoBodies_, constraints, settings.splitImpulseFactor, inverseH,
                              settings.slop, settings.iterations);
     if (segmentPositions_)
-        solveSegmentPositions(pseudoBodies_, segments_, settings.splitImpulseFactor, inverseH,
-                              settings.slop, settings.iterations);
+        solveSegmentPositions(pseudoBodies_, segments_, springs_, threadPulls_,
+                              settings.splitImpulseFactor, inverseH, settings.slop,
+                              settings.iterations);
     storePseudoBodies(pseudoBodies_, pseudo);
 }
 

@@ -78,6 +78,8 @@ private:
     bool directSprings_ = false;             ///< this step's springs go through springBlock_
     std::span<JointRow> joints_;             ///< of the solve in progress
     std::span<SegmentContactRow> segments_;  ///< of the solve in progress
+    std::span<const SpringRow> springs_;     ///< of the solve in progress
+    std::vector<ThreadPull> threadPulls_;    ///< solveSegmentPositions' scratch
     bool segmentPositions_ = false;          ///< their push-out goes to a position pass
     Real jointBias_ = 0;                     ///< their bias in the velocity sweeps (Baumgarte only)
     std::vector<Mat3> geometricStiffness_;   ///< scratch of applyJointGeometricStiffness

@@ -26,8 +26,10 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "tumble/solver/solver_body.h"
+#include "tumble/solver/spring_row.h"
 
 namespace tumble {
 
@@ -60,9 +62,22 @@ struct SegmentContactRow {
 void prepareSegmentContacts(std::span<SolverBody> bodies, std::span<SegmentContactRow> rows,
                             bool warmStart);
 
+/// A thread's pull-only row in solveSegmentPositions (scratch, one per tension-only spring).
+struct ThreadPull {
+    std::uint32_t spring = 0;  ///< index into the springs
+    Real target = 0;           ///< largest rate of stretching the pass may add (m/s)
+    Real mass = 0;             ///< 1 / (J M^-1 J') (kg)
+    Real impulse = 0;          ///< accumulated, <= 0: a pull (N s)
+};
+
 /// Split impulse's position pass for the rows: `iterations` sweeps on the pseudo-velocities of
-/// `bodies`, each row with pushOut driving the depth beyond the slop out at factor / h.
+/// `bodies`, each row with pushOut driving the depth beyond the slop out at factor / h, each
+/// followed by a sweep over the tension-only springs (threads) as rigid pull-only rows on the
+/// pseudo-velocity the pass itself adds: a push moves the taut threads with the nodes instead of
+/// stretching them, and the nodes' own contacts' push-out (before it) reaches no further.
+/// Needs prepareSpringRows()'s Jacobians; `pulls` is scratch.
 void solveSegmentPositions(std::span<SolverBody> bodies, std::span<SegmentContactRow> rows,
+                           std::span<const SpringRow> springs, std::vector<ThreadPull>& pulls,
                            Real factor, Real inverseH, Real slop, int iterations);
 
 /// One projected Gauss-Seidel sweep over the rows with the given bias factor and slop (m), as
