@@ -35,8 +35,12 @@ void buildSpringRows(const SpringStore& springs, const BodyStore& bodies, Real h
             continue;
         // Built in place: a default row copied in (~300 B each) was a share of the nets' step.
         SpringRow& row = rows.emplace_back();
-        const Vec3 pA = anchorAt(bodies, a, def.localAnchorA);
-        const Vec3 pB = world ? def.localAnchorB : anchorAt(bodies, b, def.localAnchorB);
+        const bool centredA = anchorCentred(bodies, a, def.localAnchorA);
+        const bool centredB = !world && anchorCentred(bodies, b, def.localAnchorB);
+        const Vec3 pA = centredA ? bodies.motion[a].center : anchorAt(bodies, a, def.localAnchorA);
+        const Vec3 pB = world      ? def.localAnchorB
+                        : centredB ? bodies.motion[b].center
+                                   : anchorAt(bodies, b, def.localAnchorB);
         row.bodyA = solverIndex(a);
         row.bodyB = world ? 0 : solverIndex(b);
         row.rA = pA - bodies.motion[a].center;
@@ -63,7 +67,7 @@ void buildSpringRows(const SpringStore& springs, const BodyStore& bodies, Real h
                                 startAnchorVelocity(bodies, a, false, row.rA);
         }
         rowSpring.push_back(i);
-        rowBodies.push_back({a, b, world});
+        rowBodies.push_back({a, b, world, centredA && centredB});
     }
 }
 
