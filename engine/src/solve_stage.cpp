@@ -292,8 +292,10 @@ SolveStage::ProjectedGeometry SolveStage::projectedGeometry(const BodyStore& bod
 
 Vec3 SolveStage::projectedSpan(const BodyStore& bodies, const SpringStore& springs,
                                std::size_t j) const {
-    const SpringDef& def = springs.defs[rowSpring_[j]];
     const RowBodies& ends = rowBodies_[j];
+    if (ends.centred)
+        return bodies.motion[ends.b].center - bodies.motion[ends.a].center;
+    const SpringDef& def = springs.defs[rowSpring_[j]];
     const Vec3 pA = anchorAt(bodies, ends.a, def.localAnchorA);
     const Vec3 pB = ends.world ? def.localAnchorB : anchorAt(bodies, ends.b, def.localAnchorB);
     return pB - pA;

@@ -30,7 +30,16 @@ struct RowBodies {
     std::uint32_t a = 0;
     std::uint32_t b = 0;
     bool world = false;  ///< B is the world point itself
+    /// Both anchors at their bodies' centres of mass (not a world end), as anchorAt() finds
+    /// them: the span is the centres' difference. A net's nodes; the end-of-step check of its
+    /// slack threads (solve_stage.cpp) then reads neither the definition nor a rotation.
+    bool centred = false;
 };
+
+/// Whether anchorAt() puts the anchor at the body's centre of mass (no rotation).
+inline bool anchorCentred(const BodyStore& bodies, std::uint32_t index, const Vec3& localAnchor) {
+    return (localAnchor - bodies.inertia[index].localCenter).isZero();
+}
 
 /// Anchor distance of spring `index` at the current poses (m).
 Real springLength(const SpringStore& springs, const BodyStore& bodies, std::uint32_t index);

@@ -24,8 +24,10 @@ void buildSpringRows(const SpringStore& springs, const BodyStore& bodies, Real h
     rowBodies.clear();
     if (springs.implicitCount == 0)
         return;
-    for (std::uint32_t i = 0; i < springs.count(); ++i) {
+    const std::uint32_t count = springs.count();
+    for (std::uint32_t i = 0; i < count; ++i) {
         const SpringDef& def = springs.defs[i];
+        const SpringStepState& state = springs.state[i];
         if (def.formulation == SpringFormulation::Explicit)
             continue;
         const std::uint32_t a = bodies.checkedIndexOf(def.bodyA);
@@ -35,12 +37,18 @@ void buildSpringRows(const SpringStore& springs, const BodyStore& bodies, Real h
             continue;
         // Built in place: a default row copied in (~300 B each) was a share of the nets' step.
         SpringRow& row = rows.emplace_back();
-        const Vec3 pA = anchorAt(bodies, a, def.localAnchorA);
-        const Vec3 pB = world ? def.localAnchorB : anchorAt(bodies, b, def.localAnchorB);
+        const bool centredA = anchorCentred(bodies, a, def.localAnchorA);
+        const bool centredB = !world && anchorCentred(bodies, b, def.localAnchorB);
+        const Vec3& centerA = bodies.motion[a].center;
+        const Vec3& centerB = bodies.motion[b].center;  // a world end: body 0, unread
+        const Vec3 pA = centredA ? centerA : anchorAt(bodies, a, def.localAnchorA);
+        const Vec3 pB = world      ? def.localAnchorB
+                        : centredB ? centerB
+                                   : anchorAt(bodies, b, def.localAnchorB);
         row.bodyA = solverIndex(a);
         row.bodyB = world ? 0 : solverIndex(b);
-        row.rA = pA - bodies.motion[a].center;
-        row.rB = world ? Vec3::Zero() : Vec3(pB - bodies.motion[b].center);
+        row.rA = pA - centerA;
+        row.rB = world ? Vec3::Zero() : Vec3(pB - centerB);
         const Vec3 d = pB - pA;
         row.length = d.norm();
         row.direction = row.length > 0 ? Vec3(d / row.length) : Vec3::UnitX();
@@ -48,22 +56,22 @@ void buildSpringRows(const SpringStore& springs, const BodyStore& bodies, Real h
         row.stiffness = def.stiffness;
         row.damping = def.damping;
         row.tensionOnly = def.tensionOnly;
-        row.impulse = -springs.state[i].tension * h;  // tension kept in N: h may change
+        row.impulse = -state.tension * h;  // tension kept in N: h may change
         const bool trapezoidal = def.formulation == SpringFormulation::Implicit;
         // A thread that was slack may take implicit Euler for the step that catches it
         // (spring_row.h).
-        row.catching = def.tensionOnly && springs.state[i].tension <= 0;
+        row.catching = def.tensionOnly && state.tension <= 0;
         row.spectralRadius = trapezoidal ? 1 - def.numericalDamping : 0;
         row.geometricStiffness = trapezoidal;
         // An undamped thread conserves its energy through catches (spring_row.h).
         row.discreteGradient = trapezoidal && def.tensionOnly && def.numericalDamping == 0;
-        row.carried = springs.state[i].carried;
+        row.carried = state.carried;
         if (row.spectralRadius > 0) {
             row.startVelocity = startAnchorVelocity(bodies, b, world, row.rB) -
                                 startAnchorVelocity(bodies, a, false, row.rA);
         }
         rowSpring.push_back(i);
-        rowBodies.push_back({a, b, world});
+        rowBodies.push_back({a, b, world, centredA && centredB});
     }
 }
 
