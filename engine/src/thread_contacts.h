@@ -109,9 +109,14 @@ private:
 /// the thread's unit direction from A to B, `radius` its contact radius (m); reads row.t and
 /// row.normal. Rows push out their full depth unless both nodes touch s and the thread either
 /// rests on them on the row's side (a sag of up to one radius allowed, no push) or, not crossing
-/// over an edge between them, lies along s's rim (no push); details in thread_contacts.cpp.
+/// over an edge between them, lies along s's rim (no push). Where only one node touches s, a row
+/// whose surface point on s (`fromA`, `fromB`: from each node) lies within 2 radii of it, over
+/// another feature than the node's face, with the thread leaving across that feature into the
+/// node's contact plane and its axis out of s, counts no depth (the capsule leaving the node over
+/// the edge it rests on); details in thread_contacts.cpp.
 void setRowDepth(SegmentContactRow& row, Real separation, Real radius, const Vec3& axis,
                  std::span<const ThreadContacts::NodeContact> contactsA,
-                 std::span<const ThreadContacts::NodeContact> contactsB, std::uint32_t s);
+                 std::span<const ThreadContacts::NodeContact> contactsB, std::uint32_t s,
+                 const Vec3& fromA, const Vec3& fromB);
 
 }  // namespace tumble
