@@ -120,8 +120,7 @@ inline bool checksOut(const Mat4& k, int n, const Vec4& c, unsigned set, const V
     bool ok = true;
     for (int i = 0; i < 4; ++i) {
         const bool active = (set & (1u << i)) != 0;
-        const bool holds =
-            active ? (x(i) >= 0) & (std::abs(w(i)) <= tolerance) : w(i) >= -tolerance;
+        const bool holds = active ? (x(i) >= 0 && std::abs(w(i)) <= tolerance) : w(i) >= -tolerance;
         ok &= i >= n || holds;
     }
     return ok;
