@@ -8,6 +8,34 @@
 
 namespace tumble {
 
+namespace {
+
+// One column i of row k's sparse triangular solve (ldl_numeric), shared by both
+// factorisations: y_i taken out of work, subtracted along column i of L (its entries in
+// [first, slot), rows index[p]), L(k, i) = y_i / D_i handed to store and its share taken off
+// the diagonal d. A y_i of +0 (a slack thread's row couples nothing; work never holds -0: it
+// sums from +0 and subtracts, and x - x is +0) stores +0 and skips the subtractions, which
+// would subtract only +0 * l and change no value: the bits are kept. Returns whether y_i was
+// nonzero.
+template <class Store>
+inline bool eliminateColumn(Real* work, const int* index, const Real* value, const Real* diagonal,
+                            int column, int first, int slot, Real& d, Store store) {
+    const Real yi = work[column];
+    work[column] = 0;
+    if (yi == 0) {
+        store(Real(0));
+        return false;
+    }
+    for (int p = first; p < slot; ++p)
+        work[index[p]] -= value[p] * yi;
+    const Real lki = yi / diagonal[column];
+    d -= lki * yi;
+    store(lki);
+    return true;
+}
+
+}  // namespace
+
 // ldl_symbolic's elimination tree and column counts, then the numeric factorisation's sparse
 // triangular solves done once on the pattern: each row k of L as the columns its solve visits,
 // in the order it visits them, and the slot of L each result goes to. factor() then repeats
@@ -194,22 +222,11 @@ bool SpringBlockSolver::factorWhole() {
         Real d = scatterColumn(k);
         for (int q = reachStart_[k]; q < reachStart_[k + 1]; ++q) {
             const Reach& r = reach_[q];
-            const Real yi = work_[r.column];
-            work_[r.column] = 0;
             ++visits;
-            // A slack thread's row couples nothing: its y is +0 (work_ never holds -0: it sums
-            // from +0 and subtracts, and x - x is +0), and so is its L entry; subtracting
-            // +0 * l changes no value, so skipping it keeps the bits.
-            if (yi == 0) {
+            if (!eliminateColumn(work_.data(), lIndex_.data(), lValue_.data(), diagonal_.data(),
+                                 r.column, r.first, r.slot, d,
+                                 [&](Real lki) { lValue_[r.slot] = lki; }))
                 ++zeros;
-                lValue_[r.slot] = 0;
-                continue;
-            }
-            for (int p = r.first; p < r.slot; ++p)
-                work_[lIndex_[p]] -= lValue_[p] * yi;
-            const Real lki = yi / diagonal_[r.column];
-            d -= lki * yi;
-            lValue_[r.slot] = lki;
         }
         diagonal_[k] = d;
         // K is positive definite (every active row has a positive softness or a movable body);
@@ -250,21 +267,11 @@ bool SpringBlockSolver::factorCompact() {
         // subtracted only +0 * y, which changes no value.
         for (int q = compactReachStart_[k]; q < compactReachStart_[k + 1]; ++q) {
             const CompactReach& r = compactReach_[q];
-            const Real yi = work_[r.column];
-            work_[r.column] = 0;
-            // A y that cancels to +0 gives an L entry of +0, and subtracting +0 * l keeps
-            // every value.
-            if (yi == 0) {
-                compactValue_[r.slot] = 0;
-                lValue_[r.fullSlot] = 0;
-                continue;
-            }
-            for (int p = r.first; p < r.slot; ++p)
-                work_[compactIndex_[p]] -= compactValue_[p] * yi;
-            const Real lki = yi / diagonal_[r.column];
-            d -= lki * yi;
-            compactValue_[r.slot] = lki;
-            lValue_[r.fullSlot] = lki;
+            eliminateColumn(work_.data(), compactIndex_.data(), compactValue_.data(),
+                            diagonal_.data(), r.column, r.first, r.slot, d, [&](Real lki) {
+                                compactValue_[r.slot] = lki;
+                                lValue_[r.fullSlot] = lki;
+                            });
         }
         diagonal_[k] = d;
         // K is positive definite (every active row has a positive softness or a movable body);
