@@ -94,6 +94,7 @@ private:
         std::uint32_t body;  // solver body both rows act on
         bool sideBI;         // row I acts on `body` as its B end (+J) or its A end (-J)
         bool sideBJ;
+        bool first;  // the entry's first coupling: assemble() starts the entry from +0 here
     };
 
     void addTransverseRows(std::span<const SolverBody> bodies);
