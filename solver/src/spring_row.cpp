@@ -374,22 +374,47 @@ bool noWarmStart(const SpringRow& row, bool warmStart) {
     return !warmStart || row.impulse > 0 || (row.impulse == 0 && !std::signbit(row.impulse));
 }
 
+// prepareRow()'s deferral of an undamped thread between its bodies' centres (a net's), decided
+// without its Jacobians, which a deferred row does not keep (finishSpringRow() sets them): with
+// rA = rB = 0 their angular terms of J M^-1 J' are +-0 (the inverse inertias are finite: mass
+// properties are checked finite and positive definite), which leave the inverse masses' sum
+// unchanged, so (omega h)^2 is the one prepareRow() finds, bit for bit. Most of a net in
+// flight is deferred: its Jacobians were a fifth of preparing the 10 x 10 net's rows.
+bool deferCentred(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h,
+                  bool warmStart) {
+    if (!((row.rA.array() == 0).all() && (row.rB.array() == 0).all()))
+        return false;
+    const Real inverseMass = a.inverseMass + b.inverseMass;
+    const Real squared = h * h * row.stiffness * inverseMass;  // (omega h)^2
+    if (!(squared < kDiscreteGradientFrom && row.length >= kMinimumLength && inverseMass > 0 &&
+          row.length < row.restLength && noWarmStart(row, warmStart)))
+        return false;
+    startResolvedThread(row, h);
+    if (row.lastStretch > 0)
+        return false;
+    row.discreteGradient = false;  // squared is below its band
+    row.deferred = true;
+    return true;
+}
+
 // prepareSpringRow(); mayDefer: a resolved thread slack at both levels and without a warm start
 // is left `deferred` after its levels (spring_row.h), its Jacobians those of its start line.
 void prepareRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h, bool mayDefer,
                 bool warmStart) {
     row.knownImpulse = 0;
     row.deferred = false;
+    // Only threads past Fox-Goodwin's range, and not the stiffest, take the discrete gradient;
+    // undamped ones within it the three-level scheme's energy-conserving form.
+    const bool undampedThread =
+        row.discreteGradient && row.tensionOnly && row.damping == 0 && row.spectralRadius >= 1;
+    if (mayDefer && undampedThread && deferCentred(a, b, row, h, warmStart))
+        return;
     row.angularA = row.rA.cross(row.direction);
     row.angularB = row.rB.cross(row.direction);
     row.angularImpulseA = a.inverseInertia * row.angularA;
     row.angularImpulseB = b.inverseInertia * row.angularB;
     const Real inverseMass = jacobianInverseMass(a, b, row);
     const Real squared = h * h * row.stiffness * inverseMass;  // (omega h)^2
-    // Only threads past Fox-Goodwin's range, and not the stiffest, take the discrete gradient;
-    // undamped ones within it the three-level scheme's energy-conserving form.
-    const bool undampedThread =
-        row.discreteGradient && row.tensionOnly && row.damping == 0 && row.spectralRadius >= 1;
     row.discreteGradient = row.discreteGradient && squared >= kDiscreteGradientFrom &&
                            squared <= kDiscreteGradientUpTo;
     row.levelGradient = false;
@@ -476,8 +501,9 @@ void prepareSpringRow(const SolverBody& a, const SolverBody& b, SpringRow& row, 
 
 void finishSpringRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h) {
     row.deferred = false;
-    // The start line's Jacobians are still the row's: the same (omega h)^2, bit for bit.
-    const Real squared = h * h * row.stiffness * jacobianInverseMass(a, b, row);
+    // The start line's Jacobians (deferCentred() left them out): the same (omega h)^2 as
+    // prepareRow()'s, bit for bit.
+    const Real squared = h * h * row.stiffness * setJacobians(a, b, row);
     lineariseResolvedThread(a, b, row, h, squared);
     // Its impulse is 0 whatever its mass (prepareSpringRows).
 }
