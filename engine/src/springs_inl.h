@@ -49,6 +49,7 @@ void buildSpringRows(const SpringStore& springs, const BodyStore& bodies, Real h
         row.bodyB = world ? 0 : solverIndex(b);
         row.rA = pA - centerA;
         row.rB = world ? Vec3::Zero() : Vec3(pB - centerB);
+        row.centred = centredA && centredB;  // x - x is +0: rA = rB = 0
         const Vec3 d = pB - pA;
         row.length = d.norm();
         row.direction = row.length > 0 ? Vec3(d / row.length) : Vec3::UnitX();

@@ -529,8 +529,7 @@ Real SpringBlockSolver::settle(std::span<SolverBody> bodies) {
             if (r.deferred) {
                 // Slack at both levels, inactive: wanted exactly when usable and caught (below),
                 // so prepared only then.
-                Vec3 end;
-                if (!(threadRowEndStretch(a, b, r, h_, end) > kFlipSpeed * h_))
+                if (!threadRowEndStretchExceeds(a, b, r, h_, kFlipSpeed * h_))
                     continue;
                 finishSpringRow(a, b, r, h_);
             }
@@ -548,8 +547,7 @@ Real SpringBlockSolver::settle(std::span<SolverBody> bodies) {
                 // zero above the rest length, and threads caught short of that were left out,
                 // ended stretched without a pull and had the stretch projected away
                 // (`net-energy` at omega_e h = 2 lost 74 %).
-                Vec3 end;
-                wanted_[i] = threadRowEndStretch(a, b, r, h_, end) > kFlipSpeed * h_;
+                wanted_[i] = threadRowEndStretchExceeds(a, b, r, h_, kFlipSpeed * h_);
             } else {
                 wanted_[i] = active_[i] ? pulls || r.impulse / r.mass <= kFlipSpeed
                                         : springRowSpeed(a, b, r) + r.bias > kFlipSpeed;

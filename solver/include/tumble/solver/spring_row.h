@@ -120,8 +120,11 @@ namespace tumble {
 struct SpringRow {
     std::uint32_t bodyA = 0;  ///< index into the solver's body array
     std::uint32_t bodyB = 0;
-    Vec3 rA = Vec3::Zero();          ///< from A's centre of mass to its anchor (world, m)
-    Vec3 rB = Vec3::Zero();          ///< from B's centre of mass to its anchor (world, m)
+    Vec3 rA = Vec3::Zero();  ///< from A's centre of mass to its anchor (world, m)
+    Vec3 rB = Vec3::Zero();  ///< from B's centre of mass to its anchor (world, m)
+    /// Both anchors at their bodies' centres of mass (rA = rB = 0, not a world end): a net's.
+    /// False asks nothing of the row.
+    bool centred = false;
     Vec3 direction = Vec3::UnitX();  ///< unit, from anchor A to anchor B
     Real length = 0;                 ///< anchor distance at the start of the step (m)
     Real restLength = 1;             ///< (m), > 0
@@ -208,6 +211,19 @@ inline Real threadRowEndStretch(const SolverBody& a, const SolverBody& b, const 
                              a.angularVelocity.cross(row.rA);
     endSpan = row.span + h * anchorSpeed;
     return endSpan.norm() - row.restLength;
+}
+
+/// Whether threadRowEndStretch() exceeds `least` (m), the same answer. A `centred` row's anchor
+/// speed leaves out the rotation terms: w x 0 is +-0, which changes at most the sign of a zero
+/// component of the end span, whose length squares it (a non-finite angular velocity aside, a
+/// step that fails anyway). The cross products were a third of settling a net's active set.
+inline bool threadRowEndStretchExceeds(const SolverBody& a, const SolverBody& b,
+                                       const SpringRow& row, Real h, Real least) {
+    Vec3 endSpan;
+    if (!row.centred)
+        return threadRowEndStretch(a, b, row, h, endSpan) > least;
+    endSpan = row.span + h * Vec3(b.linearVelocity - a.linearVelocity);
+    return endSpan.norm() - row.restLength > least;
 }
 
 /// A discrete-gradient thread row whose linearisation did not settle, made an implicit Euler row
