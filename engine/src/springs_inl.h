@@ -15,15 +15,42 @@ inline Vec3 startAnchorVelocity(const BodyStore& bodies, std::uint32_t index, bo
     return start.linearVelocity + start.angularVelocity.cross(r);
 }
 
+/// The fields of a SpringRow that buildSpringRows() does not set, as a default row holds them
+/// (prepareSpringRows() and the block solve read some of them before writing them, e.g. a
+/// deferred row's mass).
+inline void resetRow(SpringRow& row) {
+    // A field added to SpringRow is set by buildSpringRows() or here.
+    static_assert(sizeof(SpringRow) == 400, "SpringRow changed: set its new field");
+    row.levelGradient = false;
+    row.lastStretch = 0;
+    row.span = Vec3::Zero();
+    row.linearisedAt = 0;
+    row.turn = Vec3::Zero();
+    row.angularA = Vec3::Zero();
+    row.angularB = Vec3::Zero();
+    row.angularImpulseA = Vec3::Zero();
+    row.angularImpulseB = Vec3::Zero();
+    row.mass = 0;
+    row.softness = 0;
+    row.bias = 0;
+    row.knownImpulse = 0;
+    row.deferred = false;
+}
+
 template <typename SolverIndex>
 void buildSpringRows(const SpringStore& springs, const BodyStore& bodies, Real h,
                      SolverIndex&& solverIndex, std::vector<SpringRow>& rows,
                      std::vector<std::uint32_t>& rowSpring, std::vector<RowBodies>& rowBodies) {
-    rows.clear();
     rowSpring.clear();
     rowBodies.clear();
-    if (springs.implicitCount == 0)
+    if (springs.implicitCount == 0) {
+        rows.clear();
         return;
+    }
+    // The last step's rows are written over, every field (resetRow), rather than default ones
+    // constructed (a default row was a sixth of building a net's row); new ones are added only
+    // while the scene grows.
+    std::size_t used = 0;
     const std::uint32_t count = springs.count();
     for (std::uint32_t i = 0; i < count; ++i) {
         const SpringDef& def = springs.defs[i];
@@ -36,7 +63,10 @@ void buildSpringRows(const SpringStore& springs, const BodyStore& bodies, Real h
         if (!bodies.isAwakeDynamic(a) && (world || !bodies.isAwakeDynamic(b)))
             continue;
         // Built in place: a default row copied in (~300 B each) was a share of the nets' step.
-        SpringRow& row = rows.emplace_back();
+        if (used == rows.size())
+            rows.emplace_back();
+        SpringRow& row = rows[used++];
+        resetRow(row);
         const bool centredA = anchorCentred(bodies, a, def.localAnchorA);
         const bool centredB = !world && anchorCentred(bodies, b, def.localAnchorB);
         const Vec3& centerA = bodies.motion[a].center;
@@ -67,13 +97,14 @@ void buildSpringRows(const SpringStore& springs, const BodyStore& bodies, Real h
         // An undamped thread conserves its energy through catches (spring_row.h).
         row.discreteGradient = trapezoidal && def.tensionOnly && def.numericalDamping == 0;
         row.carried = state.carried;
-        if (row.spectralRadius > 0) {
-            row.startVelocity = startAnchorVelocity(bodies, b, world, row.rB) -
-                                startAnchorVelocity(bodies, a, false, row.rA);
-        }
+        row.startVelocity = row.spectralRadius > 0
+                                ? Vec3(startAnchorVelocity(bodies, b, world, row.rB) -
+                                       startAnchorVelocity(bodies, a, false, row.rA))
+                                : Vec3::Zero();
         rowSpring.push_back(i);
         rowBodies.push_back({a, b, world, centredA && centredB});
     }
+    rows.resize(used);  // shrinks: no allocation
 }
 
 }  // namespace tumble
