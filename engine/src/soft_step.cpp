@@ -23,6 +23,14 @@ SolverStats SolveStage::runSoft(BodyStore& bodies, const ShapeStore& shapes,
     const AnchorLengths lengths = AnchorLengths::of(settings.slop, contacts.contactMargin);
     softProfile_.prepare = timed([&] {
         loadSolverBodies(bodies, context.h / n);
+        softJumps_.clear();
+        softStartBodies_.clear();
+        if (!kinematicChanges_.empty()) {
+            softJumps_.assign(solverBodies_.size(), PseudoVelocity{});
+            for (const KinematicChange& k : kinematicChanges_)
+                softJumps_[solverBodyIndex(bodies, k.body)] = k.change;
+            kinematicChanges_.clear();  // a step of several substeps: its first only
+        }
         constraints = buildConstraints(bodies, shapes, contacts, context);
         if (anchored)
             seatSoftAnchors(bodies, contacts, constraints, lengths);
@@ -45,8 +53,10 @@ SolverStats SolveStage::runSoft(BodyStore& bodies, const ShapeStore& shapes,
             }
         }
         ContactSolver& solver = solver_.contacts();
+        if (!softJumps_.empty())
+            softStartBodies_.assign(solverBodies_.begin(), solverBodies_.end());
         stats.deepestPenetration = solver.prepare(solverBodies_, constraints, context.h, rows);
-        solver.beginSoft(constraints);
+        solver.beginSoft(constraints, softJumps_, softStartBodies_);
     });
     softProfile_.velocity = timed([&] { softSubsteps(bodies, constraints, context, rows); });
     stats.iterations = n;
@@ -54,6 +64,22 @@ SolverStats SolveStage::runSoft(BodyStore& bodies, const ShapeStore& shapes,
         holdSoftAnchors(bodies, constraints, context, lengths);
     storeImpulses(contacts, constraints, anchored);
     return stats;
+}
+
+void SolveStage::noteKinematicChanges(const BodyStore& bodies, bool soft) {
+    kinematicChanges_.clear();
+    for (std::size_t k = 0; soft && k < bodies.awake.size(); ++k) {
+        const std::uint32_t i = bodies.awake[k];
+        if (bodies.info[i].type != BodyType::Kinematic)
+            continue;
+        const BodyMotion& now = bodies.motion[i];
+        const BodyMotion& before = bodies.previousMotion[i];  // as the last step began
+        if (now.linearVelocity != before.linearVelocity ||
+            now.angularVelocity != before.angularVelocity)
+            kinematicChanges_.push_back({i,
+                                         {now.linearVelocity - before.linearVelocity,
+                                          now.angularVelocity - before.angularVelocity}});
+    }
 }
 
 // The anchors' drifts as the default step's (holdAnchors): at the step's start, where the
@@ -160,12 +186,16 @@ void SolveStage::softSubsteps(BodyStore& bodies, std::span<ContactConstraint> co
                                settings.restitutionThreshold);
         if (k > 0)
             solver.softWarmStart(solverBodies_, constraints);
-        solver.softTargets(constraints, moved_, soft, sub.inverseH, false);
+        // The kinematic changes' share the bodies still lag by after this substep.
+        const Real remaining = Real(n - 1 - k) / n;
+        solver.softTargets(constraints, solverBodies_, moved_, soft, sub.inverseH, remaining, true,
+                           false);
         solver.softSweep(solverBodies_, constraints, settings, sub.inverseH, &soft);
         storeVelocities(bodies);
         integratePositions(bodies, {}, sub);
         measureDisplacements(bodies, sub.h);
-        solver.softTargets(constraints, moved_, soft, sub.inverseH, k == n - 1);
+        solver.softTargets(constraints, solverBodies_, moved_, soft, sub.inverseH, remaining, false,
+                           k == n - 1);
         solver.softSweep(solverBodies_, constraints, settings, sub.inverseH, nullptr);
         solver.endSoftSubstep(constraints);
     }

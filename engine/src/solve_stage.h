@@ -46,6 +46,11 @@ public:
     /// or joints: the world keeps run() for them.
     SolverStats runSoft(BodyStore& bodies, const ShapeStore& shapes, ContactManager& contacts,
                         const StepContext& context, const SolverSettings& settings);
+    /// Before the step's rollback state is saved (World::step): the velocity changes the
+    /// application gave the kinematic bodies since the last step began, which the next soft
+    /// step's friction spreads over its substeps (ContactSolver::beginSoft says why). Kept for
+    /// the step's first runSoft only.
+    void noteKinematicChanges(const BodyStore& bodies, bool soft);
     /// Time of each of the solver's stages in the last run.
     const SolverProfile& solverProfile() const {
         return softRun_ ? softProfile_ : solver_.profile();
@@ -154,6 +159,13 @@ private:
     std::vector<BodyDisplacement> moved_;   ///< by solver body: since the step's start
     std::vector<SolverBody> softChange_;    ///< by solver body: the first substep's velocity change
     std::vector<PseudoVelocity> softLift_;  ///< by solver body: the bounces' displacements (m)
+    struct KinematicChange {
+        std::uint32_t body = 0;  ///< dense index
+        PseudoVelocity change;   ///< linear (m/s) and angular (rad/s)
+    };
+    std::vector<KinematicChange> kinematicChanges_;  ///< noteKinematicChanges'
+    std::vector<PseudoVelocity> softJumps_;          ///< by solver body: those changes
+    std::vector<SolverBody> softStartBodies_;        ///< with them: the step's start velocities
 };
 
 /// Solver body 0 is every static body; awake body k is solver body 1 + k.

@@ -299,6 +299,7 @@ StepStatus World::step() {
         wakeSpringLinked(w.springs, w.bodies, w.contacts, w.islands);
     if (w.joints.count() > 0)
         wakeJointLinked(w.joints, w.bodies, w.contacts, w.islands);
+    w.solve.noteKinematicChanges(w.bodies, w.settings.solver.softSubsteps > 0);
     w.bodies.savePreviousMotion();  // awake bodies: the others do not move
     w.springs.saveState();
     w.joints.saveState();

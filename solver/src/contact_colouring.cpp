@@ -204,15 +204,18 @@ void ContactRows::fill(Bundle& bundle, int lane, const ContactConstraint& c, std
 // inverseH, or the depth the biased sweep pushes out.
 void ContactRows::softTargets(std::span<const Real> separations,
                               std::span<const std::uint32_t> firstPoint,
+                              std::span<const std::array<Real, 2>> tangentTargets,
                               const std::array<Real, 3>& scales, Real slop, Real inverseH) {
     softScales_ = scales;
     softTargets_ = true;
     soft_.resize(points_.size());
-    for (const Bundle& bundle : bundles_) {
+    for (Bundle& bundle : bundles_) {
         for (int i = 0; i < bundle.maxPoints; ++i)
             soft_[bundle.firstPoint + i].scale = Lane{} + 1.0;
         for (int lane = 0; lane < bundle.laneCount; ++lane) {
             const std::uint32_t first = firstPoint[bundle.constraint[lane]];
+            bundle.tangentTarget[0][lane] = tangentTargets[bundle.constraint[lane]][0];
+            bundle.tangentTarget[1][lane] = tangentTargets[bundle.constraint[lane]][1];
             const Real scale = scales[bundle.bodyA[lane] == 0 || bundle.bodyB[lane] == 0 ? 2 : 1];
             for (int i = 0; i < bundle.points[lane]; ++i) {
                 const Real s = separations[first + i];

@@ -269,8 +269,9 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle, const SolverS
             dv[k] = v[1][k] - v[0][k];
         Lane vt[2];
         for (int r = 0; r < 2; ++r) {
-            vt[r] = (dot(bundle.tangents[r], dv) + dot(q.tangentAngularB[r], v[1] + 3)) -
-                    dot(q.tangentAngularA[r], v[0] + 3);
+            vt[r] = ((dot(bundle.tangents[r], dv) + dot(q.tangentAngularB[r], v[1] + 3)) -
+                     dot(q.tangentAngularA[r], v[0] + 3)) -
+                    bundle.tangentTarget[r];
         }
         const Lane old0 = q.tangentImpulse[0];
         const Lane old1 = q.tangentImpulse[1];

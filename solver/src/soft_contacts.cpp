@@ -1,5 +1,6 @@
 // The contact rows' part of the soft step (docs/ARCHITECTURE.md, "The soft step").
 #include <algorithm>
+#include <cmath>
 #include <numbers>
 
 #include "bounce_support.h"
@@ -32,6 +33,31 @@ Real separationNow(const SoftPoint& q, std::span<const BodyDisplacement> moved) 
            a.turn.dot(q.angularA);
 }
 
+// The slip along the tangents that the kinematic bodies' velocity changes (`jumps`) made at the
+// manifold's centroid: the slip of the step's start (`start`) along the change, up to the change.
+std::array<Real, 2> kinematicSlip(const ContactConstraint& c, std::span<const PseudoVelocity> jumps,
+                                  std::span<const SolverBody> start) {
+    Vec3 rA = Vec3::Zero();
+    Vec3 rB = Vec3::Zero();
+    for (int i = 0; i < c.pointCount; ++i) {
+        rA += c.points[i].rA;
+        rB += c.points[i].rB;
+    }
+    rA /= c.pointCount;
+    rB /= c.pointCount;
+    const Vec3 change = (jumps[c.bodyB].linear + jumps[c.bodyB].angular.cross(rB)) -
+                        (jumps[c.bodyA].linear + jumps[c.bodyA].angular.cross(rA));
+    const Vec3 slip = start[c.bodyB].velocityAt(rB) - start[c.bodyA].velocityAt(rA);
+    const Real change0 = c.tangents[0].dot(change);
+    const Real change1 = c.tangents[1].dot(change);
+    const Real size = change0 * change0 + change1 * change1;
+    if (!(size > 0))
+        return {0, 0};
+    const Real along = c.tangents[0].dot(slip) * change0 + c.tangents[1].dot(slip) * change1;
+    const Real made = std::clamp<Real>(along / size, 0, 1);
+    return {made * change0, made * change1};
+}
+
 }  // namespace
 
 // A gap (m) no step closes: -kUnreachable / hs is no target a body reaches.
@@ -49,7 +75,19 @@ SoftContact softContact(const SolverSettings& settings, Real h) {
     return soft;
 }
 
-void ContactSolver::beginSoft(std::span<ContactConstraint> constraints) {
+// The velocity changes the application gave kinematic bodies since the last step (`jumps`)
+// reach a body sticking on them over the step, as from a steady acceleration: the slip they made
+// at the manifold's centroid (the step's slip along v_t's change, up to the change: none for a
+// body already given the kinematic body's new velocity) is taken off at 1/n a substep, a steady
+// need the warm start replays. Taken by the first substep, it was a catch-up that the later
+// substeps' warm start replayed as a force (0.18 of a turning platform's alpha r h left in the
+// cube's velocity at 3 x 45), and it met that substep's Coulomb limit, mu m g h / n, where the
+// default step's one solve has the step's. The body's velocity at the step's end is the
+// kinematic body's; its place lags by (n - 1) / 2n of the change times h, which the friction
+// anchors take back.
+void ContactSolver::beginSoft(std::span<ContactConstraint> constraints,
+                              std::span<const PseudoVelocity> jumps,
+                              std::span<const SolverBody> start) {
     softSums_.assign(constraints.size(), SoftSum{});
     softBounces_.clear();
     softLate_.clear();
@@ -72,6 +110,17 @@ void ContactSolver::beginSoft(std::span<ContactConstraint> constraints) {
         }
     }
     softSeparations_.resize(softPoints_.size());
+    softFriction_.clear();
+    for (std::size_t j = 0; j < constraints.size(); ++j) {
+        const ContactConstraint& c = constraints[j];
+        if (!(c.friction > 0 && c.pointCount > 0))
+            continue;
+        const std::array<Real, 2> jump =
+            jumps.empty() ? std::array<Real, 2>{0, 0} : kinematicSlip(c, jumps, start);
+        softFriction_.push_back(
+            {c.normal, c.tangents, jump, c.bodyA, c.bodyB, static_cast<std::uint32_t>(j)});
+    }
+    softTangentTargets_.assign(constraints.size(), {0, 0});
     narrow_.dropBounces();
 }
 
@@ -87,9 +136,42 @@ void ContactSolver::beginSoft(std::span<ContactConstraint> constraints) {
 // (1.2 mm/s on the ground at 60 Hz). The rows compute bias / h x (depth - slop), so with bias = h
 // the depth written is slop + that push. The points are read from a compact copy in the rows' order
 // (through the constraints, 3 KB each, this pass was a tenth of pyramid-20's soft step).
+//
+// The friction rows' targets turn with the pair. Their levers and basis are the step's start's,
+// so a sticking pair turning about the normal (a cube on a turning platform) met its points'
+// change of velocity, w x (w x r) h a step, as a jump at the step's start: the first substep
+// caught it up, the later substeps' warm start replayed that catch-up as a force, and the cube's
+// velocity ended 0.18 of the jump off the platform's (3 x 45; docs/ARCHITECTURE.md, "Why a
+// sticking cube's velocity was off"). With both levers turned by a spin s about the normal that
+// the pair shares, the relative velocity at the turned points is v_t + t . (s n x (dA - dB)), d
+// the centres' displacements since the step's start, so the rows aim at v_t = t . (s n x (dB -
+// dA)): a steady need of s^2 r hs a substep, which the warm start replays, and a sticking body
+// ends the step with the platform's velocity at its end pose. The biased sweep aims where the
+// substep's positions will take the bodies (d + hs v), as its relax sweep does after them: at d,
+// the need arrived in the relax sweep, one sweep after the warm start that replays it, and
+// 0.12 of it stayed. The shared spin is the smaller of the two when they have one sign, else 0:
+// exact for a pair that turns together (sticking), nothing against a ground that does not turn;
+// a ball rolling and spinning keeps its contact under its centre, not on a material point, and
+// turned with its own spin its rows would ask a slip of r w_roll w_spin t. Per manifold: a cross
+// and two dot products.
 void ContactSolver::softTargets(std::span<ContactConstraint> constraints,
+                                std::span<const SolverBody> bodies,
                                 std::span<const BodyDisplacement> moved, const SoftContact& soft,
-                                Real inverseH, bool last) {
+                                Real inverseH, Real remaining, bool biased, bool last) {
+    const Real ahead = biased ? 1 / inverseH : 0;
+    for (const SoftFriction& f : softFriction_) {
+        const SolverBody& a = bodies[f.bodyA];
+        const SolverBody& b = bodies[f.bodyB];
+        const Real spinA = a.angularVelocity.dot(f.normal);
+        const Real spinB = b.angularVelocity.dot(f.normal);
+        const Real shared =
+            spinA * spinB > 0 ? (std::abs(spinA) < std::abs(spinB) ? spinA : spinB) : 0;
+        const Vec3 moves = (moved[f.bodyB].translation + ahead * b.linearVelocity) -
+                           (moved[f.bodyA].translation + ahead * a.linearVelocity);
+        const Vec3 turned = (shared * f.normal).cross(moves);
+        softTangentTargets_[f.constraint] = {f.tangents[0].dot(turned) + remaining * f.jump[0],
+                                             f.tangents[1].dot(turned) + remaining * f.jump[1]};
+    }
     for (std::size_t k = 0; k < softPoints_.size(); ++k) {
         const SoftPoint& q = softPoints_[k];
         const Real s = separationNow(q, moved);
@@ -112,9 +194,10 @@ void ContactSolver::softTargets(std::span<ContactConstraint> constraints,
             constraints[q.grouped / 4].points[q.grouped % 4].separation = softSeparations_[k];
     }
     if (wide_)
-        rows_.softTargets(softSeparations_, softFirst_, soft.massScale, soft.slop, inverseH);
+        rows_.softTargets(softSeparations_, softFirst_, softTangentTargets_, soft.massScale,
+                          soft.slop, inverseH);
     else
-        narrow_.softTargets(softSeparations_);
+        narrow_.softTargets(softSeparations_, softTangentTargets_);
 }
 
 // In constraint order, as the scalar rows': the coloured rows' impulses are in the constraints

@@ -42,8 +42,9 @@ Real solveFriction(SweepBody& a, SweepBody& b, const SweepManifold& m, SweepPoin
         const Vec3 dv = b.linearVelocity - a.linearVelocity;
         Vec2 vt;
         for (int r = 0; r < 2; ++r) {
-            vt(r) = m.tangents[r].dot(dv) + p.tangentAngularB[r].dot(b.angularVelocity) -
-                    p.tangentAngularA[r].dot(a.angularVelocity);
+            vt(r) = (m.tangents[r].dot(dv) + p.tangentAngularB[r].dot(b.angularVelocity) -
+                     p.tangentAngularA[r].dot(a.angularVelocity)) -
+                    m.tangentTarget[r];
         }
         const Vec2 old(p.tangentImpulse[0], p.tangentImpulse[1]);
         const Real limit = m.friction * p.normalImpulse;
@@ -168,9 +169,12 @@ Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint>
     return largestChange;
 }
 
-void SweepRows::softTargets(std::span<const Real> separations) {
+void SweepRows::softTargets(std::span<const Real> separations,
+                            std::span<const std::array<Real, 2>> tangentTargets) {
     for (std::size_t k = 0; k < pointCount_; ++k)
         points_[k].separation = separations[k];
+    for (SweepManifold& m : manifolds_)
+        m.tangentTarget = tangentTargets[m.constraint];
 }
 
 void SweepRows::dropBounces() {

@@ -78,7 +78,9 @@ public:
     /// Soft step: each point's separation (`separations`, constraint j's points from
     /// `firstPoint[j]`) as its target at the substep's inverseH, no bounce; `scales`:
     /// SoftContact::massScale.
+    /// `tangentTargets`: each constraint's friction target (v_t along t_1, t_2, m/s).
     void softTargets(std::span<const Real> separations, std::span<const std::uint32_t> firstPoint,
+                     std::span<const std::array<Real, 2>> tangentTargets,
                      const std::array<Real, 3>& scales, Real slop, Real inverseH);
     /// The normal impulses of the manifolds in exactly solved groups, after the groups' solve.
     void readGroupImpulses(std::span<const ContactConstraint> constraints);
@@ -125,7 +127,8 @@ private:
         std::array<unsigned, 4> factorSet{};  // the active set `factor` holds, per lane
         Lane normal[3], tangents[2][3];
         Lane inverseMassA, inverseMassB, friction;
-        LaneMask hasPoint[4];  // lanes whose manifold has point i
+        Lane tangentTarget[2]{};  // the friction rows' v_t target; 0 but in the soft step
+        LaneMask hasPoint[4];     // lanes whose manifold has point i
     };
     struct Velocity {
         Real v[6];  // linear, then angular (world)

@@ -224,15 +224,22 @@ public:
     // The soft step (soft_contacts.cpp; SolveStage::runSoft runs the substeps). prepare() ran
     // with the scalar rows and the cached impulses divided among the substeps.
     /// Keeps each point's separation at the step's start and its bounce (applied once, at the
-    /// end), and zeroes the sums of the substeps' impulses.
-    void beginSoft(std::span<ContactConstraint> constraints);
+    /// end), and zeroes the sums of the substeps' impulses. `jumps`: by solver body, the
+    /// velocity changes the application gave kinematic bodies since the last step (linear,
+    /// angular), or empty; `start`: the bodies as the step began (before prepare's warm start).
+    void beginSoft(std::span<ContactConstraint> constraints,
+                   std::span<const PseudoVelocity> jumps = {},
+                   std::span<const SolverBody> start = {});
     /// The separations where the bodies now stand (`moved`, by solver body), as the rows'
     /// targets under `soft`: the speculative gap, or the capped push-out encoded as a depth
     /// that the biased sweep (bias = h) turns into it. `last`: the step's last relax sweep, where
     /// a point that may bounce early in the next step is not slowed (soft_contacts.cpp).
-    void softTargets(std::span<ContactConstraint> constraints,
+    /// The friction rows' targets turn with the pair's shared spin about the normal (`bodies`:
+    /// the current velocities) and leave `remaining` of beginSoft's jumps to later substeps;
+    /// `biased`: for the biased sweep, before the substep's positions (soft_contacts.cpp).
+    void softTargets(std::span<ContactConstraint> constraints, std::span<const SolverBody> bodies,
                      std::span<const BodyDisplacement> moved, const SoftContact& soft,
-                     Real inverseH, bool last);
+                     Real inverseH, Real remaining, bool biased, bool last);
     /// A substep's warm start: the accumulated impulses applied again.
     void softWarmStart(std::span<SolverBody> bodies,
                        std::span<const ContactConstraint> constraints);
@@ -282,6 +289,15 @@ private:
         std::uint32_t grouped;  ///< 4 x constraint + point when NormalIslands solves it
         std::uint8_t kind;      ///< SoftContact's: 1 moving pair, 2 against a static body
     };
+    /// A manifold with friction as the soft step's friction targets need it.
+    struct SoftFriction {
+        Vec3 normal;
+        std::array<Vec3, 2> tangents;
+        std::array<Real, 2> jump;  ///< v_t's change by the kinematic bodies' jumps (m/s)
+        std::uint32_t bodyA;
+        std::uint32_t bodyB;
+        std::uint32_t constraint;
+    };
     struct SoftBounce {
         std::uint32_t constraint = 0;
         int point = 0;
@@ -289,21 +305,24 @@ private:
         Real lift = 0;    ///< the separation the rebound reaches by the step's end (m)
     };
 
-    NormalIslands islands_;                  ///< normal rows of small, ill-conditioned groups,
-                                             ///< solved exactly
-    std::vector<SolverBody> supportBodies_;  ///< scratch of addSupportAcceleration
-    std::vector<NormalFactor> factors_;      ///< each manifold's block factor, this step
-    ContactRows rows_;                       ///< the wide rows (settings.colouredContacts)
-    SweepRows narrow_;                       ///< the scalar sweep's compact rows, otherwise
-    bool wide_ = false;                      ///< this step sweeps rows_
-    bool bounceCorrections_ = false;         ///< some point has one this step
-    std::vector<SoftPoint> softPoints_;      ///< soft step
-    std::vector<Real> softSeparations_;      ///< soft step: the rows' current ones (m)
-    std::vector<std::uint32_t> softFirst_;   ///< soft step: each constraint's first SoftPoint
-    std::vector<SoftSum> softSums_;          ///< soft step: per constraint
-    std::vector<SoftBounce> softBounces_;    ///< soft step: the points that bounce
-    std::vector<std::uint32_t> softLate_;    ///< soft step: restitution > 0, arriving later
-    std::vector<SolverBody> softLifts_;      ///< soft step: softGroupBounces' displacements (m)
+    NormalIslands islands_;                   ///< normal rows of small, ill-conditioned groups,
+                                              ///< solved exactly
+    std::vector<SolverBody> supportBodies_;   ///< scratch of addSupportAcceleration
+    std::vector<NormalFactor> factors_;       ///< each manifold's block factor, this step
+    ContactRows rows_;                        ///< the wide rows (settings.colouredContacts)
+    SweepRows narrow_;                        ///< the scalar sweep's compact rows, otherwise
+    bool wide_ = false;                       ///< this step sweeps rows_
+    bool bounceCorrections_ = false;          ///< some point has one this step
+    std::vector<SoftPoint> softPoints_;       ///< soft step
+    std::vector<Real> softSeparations_;       ///< soft step: the rows' current ones (m)
+    std::vector<SoftFriction> softFriction_;  ///< soft step: the manifolds with friction
+    /// soft step: each constraint's friction target, v_t along t_1, t_2 (m/s)
+    std::vector<std::array<Real, 2>> softTangentTargets_;
+    std::vector<std::uint32_t> softFirst_;  ///< soft step: each constraint's first SoftPoint
+    std::vector<SoftSum> softSums_;         ///< soft step: per constraint
+    std::vector<SoftBounce> softBounces_;   ///< soft step: the points that bounce
+    std::vector<std::uint32_t> softLate_;   ///< soft step: restitution > 0, arriving later
+    std::vector<SolverBody> softLifts_;     ///< soft step: softGroupBounces' displacements (m)
 };
 
 }  // namespace tumble

@@ -58,6 +58,8 @@ struct SweepManifold {
     Vec3 normal = Vec3::UnitZ();
     std::array<Vec3, 2> tangents{};
     Real friction = 0;
+    /// The friction rows' target: v_t along t_1, t_2 (m/s); 0 but in the soft step.
+    std::array<Real, 2> tangentTarget{};
 };
 
 class SweepRows {
@@ -72,8 +74,10 @@ public:
     Real sweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                std::span<NormalFactor> factors, const SolverSettings& settings, Real inverseH,
                Real bias, const Real* softScales = nullptr);
-    /// Soft step: the points' separations, one per point in the rows' order.
-    void softTargets(std::span<const Real> separations);
+    /// Soft step: the points' separations, one per point in the rows' order, and the friction
+    /// targets, one per constraint.
+    void softTargets(std::span<const Real> separations,
+                     std::span<const std::array<Real, 2>> tangentTargets);
     /// Soft step: no bounce in the rows (restitution is applied once, after the substeps).
     void dropBounces();
     /// Soft step: the accumulated impulses applied to the bodies again (a substep's warm start).
