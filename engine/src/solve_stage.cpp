@@ -169,7 +169,8 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
             return bodies.isAwake(index) ? solverBodyIndex(bodies, index) : 0u;
         },
         springRows_, rowSpring_, rowBodies_);
-    if (settings.stabilisation == Stabilisation::SplitImpulse) {
+    // Only the contacts read sprung_ (here and holdAnchors()): a net in flight touches nothing.
+    if (settings.stabilisation == Stabilisation::SplitImpulse && !constraints.empty()) {
         markSprung(bodies, springs);
         for (ContactConstraint& c : constraints)
             c.pushOut = sprung_[c.bodyA] == 0 && sprung_[c.bodyB] == 0;
