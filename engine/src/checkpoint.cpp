@@ -357,6 +357,7 @@ struct CheckpointAccess {
         });
         SpringStore& s = w.springs;
         fields(a, s.defs, s.state, s.previousState, s.implicitCount, s.contactCount);
+        s.forgetStiffest();  // not saved: found again from the definitions read
         io(a, s.pool_);
         JointStore& j = w.joints;
         fields(a, j.records, j.state, j.previousState);

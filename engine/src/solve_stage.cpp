@@ -169,7 +169,8 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
             return bodies.isAwake(index) ? solverBodyIndex(bodies, index) : 0u;
         },
         springRows_, rowSpring_, rowBodies_);
-    if (settings.stabilisation == Stabilisation::SplitImpulse) {
+    // Only the contacts read sprung_ (here and holdAnchors()): a net in flight touches nothing.
+    if (settings.stabilisation == Stabilisation::SplitImpulse && !constraints.empty()) {
         markSprung(bodies, springs);
         for (ContactConstraint& c : constraints)
             c.pushOut = sprung_[c.bodyA] == 0 && sprung_[c.bodyB] == 0;
@@ -307,18 +308,29 @@ Vec3 SolveStage::projectedSpan(const BodyStore& bodies, const SpringStore& sprin
 // transforms were ~5 % of a step.
 Real SolveStage::projectionErrors(const BodyStore& bodies, const SpringStore& springs,
                                   const StepContext& context) {
-    projectedGeometry_.resize(springRows_.size());
-    projectionError_.resize(springRows_.size());
+    const std::size_t count = springRows_.size();
+    projectedGeometry_.resize(count);
+    projectionError_.resize(count);
+    // Spans, not the members: the stores below would make the compiler reload each vector's
+    // bounds every row (most rows of a net in flight are deferred, a few dozen instructions).
+    const std::span<SpringRow> rows(springRows_);
+    const std::span<ProjectedGeometry> geometry(projectedGeometry_);
+    const std::span<Real> errors(projectionError_);
+    const std::span<const RowBodies> ends(rowBodies_);
     Real worst = 0;
-    for (std::size_t j = 0; j < springRows_.size(); ++j) {
-        SpringRow& solved = springRows_[j];
-        ProjectedGeometry& row = projectedGeometry_[j];
-        projectionError_[j] = 0;
+    for (std::size_t j = 0; j < count; ++j) {
+        SpringRow& solved = rows[j];
+        ProjectedGeometry& row = geometry[j];
+        errors[j] = 0;
         if (solved.deferred) {
             // Slack at the step's start and never caught (no impulse): no error unless its ends
             // now lie past its rest length, whichever scheme owns it. Only then is the rest of
-            // its preparation read.
-            const Real length = projectedSpan(bodies, springs, j).norm();  // as the geometry's
+            // its preparation read. A net's thread spans its nodes' centres (projectedSpan()).
+            const Real length =
+                (ends[j].centred
+                     ? Vec3(bodies.motion[ends[j].b].center - bodies.motion[ends[j].a].center)
+                     : projectedSpan(bodies, springs, j))
+                    .norm();  // as the geometry's
             if (length > 0 &&
                 length - solved.restLength <= kNegligibleStretch * solved.restLength) {
                 row.length = -1;
@@ -345,7 +357,7 @@ Real SolveStage::projectionErrors(const BodyStore& bodies, const SpringStore& sp
                           : std::max<Real>(0, row.length - solved.restLength);
         if (error <= kNegligibleStretch * solved.restLength)
             error = 0;  // rounding: not worth a factorisation
-        projectionError_[j] = error;
+        errors[j] = error;
         worst = std::max(worst, error);
     }
     return worst;

@@ -111,7 +111,7 @@ private:
                           const StepContext& context);
     /// sprung_ for this step's solver bodies (split impulse): their contacts push out no depth
     /// in the biased sweeps (ContactConstraint::pushOut, sprung_push_out.h) and hold no anchors.
-    /// Reads this step's rowBodies_: after buildSpringRows.
+    /// Reads this step's rowBodies_: after buildSpringRows. Left as it was without contacts.
     void markSprung(const BodyStore& bodies, const SpringStore& springs);
     /// Friction anchors (split impulse): this solve's drifts and the anchor pass on pseudo_.
     /// Contacts of a body a spring holds (sprung_, marked by run()) are left out (see the

@@ -1,5 +1,6 @@
 #include "spring_store.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -14,6 +15,7 @@ SpringId SpringStore::add(const SpringDef& def) {
         implicitCount += 1;
     if (def.contactRadius > 0)
         contactCount += 1;
+    forgetStiffest();
     return id;
 }
 
@@ -23,6 +25,19 @@ void SpringStore::remove(SpringId id) {
     if (defs[indexOf(id)].contactRadius > 0)
         contactCount -= 1;
     moveLastInto(pool_.remove(id), defs, state, previousState);
+    forgetStiffest();
+}
+
+Real SpringStore::stiffestThread() const {
+    if (stiffestThread_ < 0) {
+        Real stiffest = 0;
+        for (const SpringDef& def : defs) {
+            if (isUndampedThread(def))
+                stiffest = std::max(stiffest, def.stiffness);
+        }
+        stiffestThread_ = stiffest;
+    }
+    return stiffestThread_;
 }
 
 void SpringStore::reserve(std::size_t n) {

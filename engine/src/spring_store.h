@@ -24,6 +24,12 @@ struct SpringStepState {
     Vec3 carried = Vec3::Zero();
 };
 
+/// An undamped implicit thread: one that may take the discrete gradient (spring_row.h).
+inline bool isUndampedThread(const SpringDef& def) {
+    return def.formulation == SpringFormulation::Implicit && def.tensionOnly &&
+           def.numericalDamping == 0;
+}
+
 class SpringStore : public DenseStore<SpringId> {
     friend struct CheckpointAccess;  ///< checkpoint.cpp saves and restores the private state
 public:
@@ -43,11 +49,21 @@ public:
     /// non-finite tension counts as the largest); null when none is attached.
     SpringId strongestOn(BodyId body) const;
 
+    /// The largest stiffness of an undamped thread (isUndampedThread), 0 without one (N/m):
+    /// found again only after springs were added or removed (the step asks it every time, and
+    /// looking over a net's threads was 2 % of its step).
+    Real stiffestThread() const;
+    /// Forgets stiffestThread(): defs were written other than through add() and remove().
+    void forgetStiffest() { stiffestThread_ = -1; }
+
     std::vector<SpringDef> defs;
     std::vector<SpringStepState> state;
     std::vector<SpringStepState> previousState;
     std::uint32_t implicitCount = 0;  ///< how many are solver rows (not Explicit)
     std::uint32_t contactCount = 0;   ///< how many touch shapes (contactRadius > 0)
+
+private:
+    mutable Real stiffestThread_ = -1;  ///< stiffestThread(), -1 until found (N/m)
 };
 
 /// Drag of the bodies that have any, in the order drag was first set.

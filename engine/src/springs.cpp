@@ -118,23 +118,13 @@ void wakeSpringLinked(const SpringStore& springs, BodyStore& bodies, ContactMana
 
 namespace {
 
-// An undamped implicit thread: one that may take the discrete gradient (spring_row.h).
-bool undampedThread(const SpringDef& def) {
-    return def.formulation == SpringFormulation::Implicit && def.tensionOnly &&
-           def.numericalDamping == 0;
-}
-
 // Whether every undamped thread is below the discrete gradient's band, from the stiffest thread
 // and the lightest awake dynamic body alone: h^2 k_max (2 / m_min) bounds every thread's (omega
 // h)^2 as computed below (rounding is monotone), so this answers exactly, and a net whose threads
 // are all resolved (the net-10 sweep's from 1/240) skips looking up each thread's ends (~4 % of
 // its step).
 bool belowBand(const SpringStore& springs, const BodyStore& bodies, Real h) {
-    Real stiffest = 0;
-    for (std::uint32_t i = 0; i < springs.count(); ++i) {
-        if (undampedThread(springs.defs[i]))
-            stiffest = std::max(stiffest, springs.defs[i].stiffness);
-    }
+    const Real stiffest = springs.stiffestThread();
     Real lightest = 0;  // the largest inverse mass (1/kg)
     for (const std::uint32_t i : bodies.awake) {
         if (bodies.isAwakeDynamic(i))
@@ -151,7 +141,7 @@ int threadSubsteps(const SpringStore& springs, const BodyStore& bodies, Real h) 
     int substeps = 0;  // 0: no thread at work
     for (std::uint32_t i = 0; i < springs.count(); ++i) {
         const SpringDef& def = springs.defs[i];
-        if (!undampedThread(def))
+        if (!isUndampedThread(def))
             continue;
         // The band first, from the masses alone: most nets' threads are outside it, and the
         // geometry was most of this pass (~50 ns a thread).
