@@ -82,7 +82,6 @@ void buildSpringRows(const SpringStore& springs, const BodyStore& bodies, Real h
         const bool awakeB = !world && bodies.isAwake(b);
         // Built in place: a default row copied in (~300 B each) was a share of the nets' step.
         SpringRow& row = rowOut[used];
-        resetRow(row);
         const bool centredA = anchorCentred(bodies, a, def.localAnchorA);
         const bool centredB = !world && anchorCentred(bodies, b, def.localAnchorB);
         const Vec3& centerA = bodies.motion[a].center;
@@ -117,6 +116,7 @@ void buildSpringRows(const SpringStore& springs, const BodyStore& bodies, Real h
                                 ? Vec3(startAnchorVelocity(bodies, b, awakeB, row.rB) -
                                        startAnchorVelocity(bodies, a, awakeA, row.rA))
                                 : Vec3::Zero();
+        resetRow(row);  // last: its bool stores would make the reads above load again
         springOut[used] = i;
         bodiesOut[used] = {a, b, world, centredA && centredB};
         ++used;
