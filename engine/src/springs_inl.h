@@ -64,9 +64,12 @@ void buildSpringRows(const SpringStore& springs, const BodyStore& bodies, Real h
     RowBodies* const bodiesOut = rowBodies.data();
     std::size_t used = 0;
     const std::uint32_t count = springs.count();
+    // Through pointers too: the vectors' data would be reloaded after each row's bool stores.
+    const SpringDef* const defs = springs.defs.data();
+    const SpringStepState* const states = springs.state.data();
     for (std::uint32_t i = 0; i < count; ++i) {
-        const SpringDef& def = springs.defs[i];
-        const SpringStepState& state = springs.state[i];
+        const SpringDef& def = defs[i];
+        const SpringStepState& state = states[i];
         if (def.formulation == SpringFormulation::Explicit)
             continue;
         const std::uint32_t a = bodies.checkedIndexOf(def.bodyA);
