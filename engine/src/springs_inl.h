@@ -6,10 +6,11 @@
 namespace tumble {
 
 /// Velocity at the start of the (sub)step of the point at offset r from a body's centre of mass
-/// (m/s): what it moved with over the last step. Zero for the world and sleeping bodies.
-inline Vec3 startAnchorVelocity(const BodyStore& bodies, std::uint32_t index, bool world,
+/// (m/s): what it moved with over the last step. Zero for the world and sleeping bodies (awake
+/// false).
+inline Vec3 startAnchorVelocity(const BodyStore& bodies, std::uint32_t index, bool awake,
                                 const Vec3& r) {
-    if (world || !bodies.isAwake(index))
+    if (!awake)
         return Vec3::Zero();
     const BodyMotion& start = bodies.previousMotion[index];
     return start.linearVelocity + start.angularVelocity.cross(r);
@@ -63,9 +64,12 @@ void buildSpringRows(const SpringStore& springs, const BodyStore& bodies, Real h
     RowBodies* const bodiesOut = rowBodies.data();
     std::size_t used = 0;
     const std::uint32_t count = springs.count();
+    // Through pointers too: the vectors' data would be reloaded after each row's bool stores.
+    const SpringDef* const defs = springs.defs.data();
+    const SpringStepState* const states = springs.state.data();
     for (std::uint32_t i = 0; i < count; ++i) {
-        const SpringDef& def = springs.defs[i];
-        const SpringStepState& state = springs.state[i];
+        const SpringDef& def = defs[i];
+        const SpringStepState& state = states[i];
         if (def.formulation == SpringFormulation::Explicit)
             continue;
         const std::uint32_t a = bodies.checkedIndexOf(def.bodyA);
@@ -73,9 +77,14 @@ void buildSpringRows(const SpringStore& springs, const BodyStore& bodies, Real h
         const std::uint32_t b = world ? 0 : bodies.checkedIndexOf(def.bodyB);
         if (!bodies.isAwakeDynamic(a) && (world || !bodies.isAwakeDynamic(b)))
             continue;
+        // Asked before the row's stores: its bools may alias the body data, which the compiler
+        // would then load again for each (~9 of the ~320 instructions a net's row took).
+        const std::uint32_t solverA = solverIndex(a);
+        const std::uint32_t solverB = world ? 0 : solverIndex(b);
+        const bool awakeA = bodies.isAwake(a);
+        const bool awakeB = !world && bodies.isAwake(b);
         // Built in place: a default row copied in (~300 B each) was a share of the nets' step.
         SpringRow& row = rowOut[used];
-        resetRow(row);
         const bool centredA = anchorCentred(bodies, a, def.localAnchorA);
         const bool centredB = !world && anchorCentred(bodies, b, def.localAnchorB);
         const Vec3& centerA = bodies.motion[a].center;
@@ -84,8 +93,8 @@ void buildSpringRows(const SpringStore& springs, const BodyStore& bodies, Real h
         const Vec3 pB = world      ? def.localAnchorB
                         : centredB ? centerB
                                    : anchorAt(bodies, b, def.localAnchorB);
-        row.bodyA = solverIndex(a);
-        row.bodyB = world ? 0 : solverIndex(b);
+        row.bodyA = solverA;
+        row.bodyB = solverB;
         row.rA = pA - centerA;
         row.rB = world ? Vec3::Zero() : Vec3(pB - centerB);
         row.centred = centredA && centredB;  // x - x is +0: rA = rB = 0
@@ -107,9 +116,10 @@ void buildSpringRows(const SpringStore& springs, const BodyStore& bodies, Real h
         row.discreteGradient = trapezoidal && def.tensionOnly && def.numericalDamping == 0;
         row.carried = state.carried;
         row.startVelocity = row.spectralRadius > 0
-                                ? Vec3(startAnchorVelocity(bodies, b, world, row.rB) -
-                                       startAnchorVelocity(bodies, a, false, row.rA))
+                                ? Vec3(startAnchorVelocity(bodies, b, awakeB, row.rB) -
+                                       startAnchorVelocity(bodies, a, awakeA, row.rA))
                                 : Vec3::Zero();
+        resetRow(row);  // last: its bool stores would make the reads above load again
         springOut[used] = i;
         bodiesOut[used] = {a, b, world, centredA && centredB};
         ++used;
