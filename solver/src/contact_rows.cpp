@@ -406,10 +406,17 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
         dv[k] = v[1][k] - v[0][k];
     const Lane normalDv = dot(bundle.normal, dv);
     // Slots past maxPoints are empty in every lane (zero impulses, rows and block entries).
+    // The arrays' zeros past them are stored one by one, in the loops: initialised as `= {}`,
+    // each array was a rep stos (17 instructions by callgrind, five a call: 6 % of the kernel).
     const int points = bundle.maxPoints;
-    Lane old[4] = {};
-    Lane gap[4] = {};  // v_n - target with the current impulses
-    for (int i = 0; i < points; ++i) {
+    Lane old[4];
+    Lane gap[4];  // v_n - target with the current impulses
+    for (int i = 0; i < 4; ++i) {
+        if (i >= points) {
+            old[i] = Lane{};
+            gap[i] = Lane{};
+            continue;
+        }
         const Point& q = points_[bundle.firstPoint + i];
         old[i] = q.normalImpulse;
         const Lane target = (q.targetBase + biasH * q.depth) - q.correction;
@@ -436,14 +443,16 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
                              bundle.factorSet[3]};
     const LaneMask fast = several & ((guess == 0) | (guess == factorSet));
     LaneMask alone = several & ~fast;
-    Lane next[4] = {};
+    Lane next[4];
     LaneMask update = single;
     if (any(fast)) {
         const Lane* k = block->block;
-        Lane c[4] = {};  // the gaps with no normal impulse
-        for (int i = 0; i < points; ++i) {
-            c[i] = gap[i] - (((k[4 * i] * old[0] + k[4 * i + 1] * old[1]) + k[4 * i + 2] * old[2]) +
-                             k[4 * i + 3] * old[3]);
+        Lane c[4];  // the gaps with no normal impulse
+        for (int i = 0; i < 4; ++i) {
+            c[i] = i < points ? gap[i] - (((k[4 * i] * old[0] + k[4 * i + 1] * old[1]) +
+                                           k[4 * i + 2] * old[2]) +
+                                          k[4 * i + 3] * old[3])
+                              : Lane{};
         }
         Lane x[4];
         solveFactoredLanes(block->factor, block->inverseDiagonal, c, active, x);
@@ -457,6 +466,8 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
         for (int i = 0; i < 4; ++i)
             next[i] = positivePart(old[i] + omega * (x[i] - old[i]));
         update |= fast & ok;
+    } else {
+        next[0] = next[1] = next[2] = next[3] = Lane{};
     }
     if (points > 0) {
         const Lane mass = points_[bundle.firstPoint].normalMass;
@@ -469,8 +480,12 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
         }
         next[0] = select(single, one, next[0]);
     }
-    Lane delta[4] = {};
-    for (int i = 0; i < points; ++i) {
+    Lane delta[4];
+    for (int i = 0; i < 4; ++i) {
+        if (i >= points) {
+            delta[i] = Lane{};
+            continue;
+        }
         delta[i] = select(update, next[i] - old[i], Lane{});
         Point& q = points_[bundle.firstPoint + i];
         for (int j = 0; j < 3; ++j) {
