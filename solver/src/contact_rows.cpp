@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "contact_kernels.h"
+#include "lane_kernel.h"
 #include "normal_block.h"
 
 namespace tumble {
@@ -134,16 +135,6 @@ template <class Point>
 }
 
 }  // namespace
-
-// The lane kernels are compiled twice, for AVX2 and for the x86-64 baseline, the copy chosen
-// when the program loads: every lane operation is the same IEEE operation in both and no FMA is
-// formed (-ffp-contract=off), so the bits are the same on every machine.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
-    !defined(TUMBLE_NO_LANE_CLONES)
-#define TUMBLE_LANE_KERNEL __attribute__((target_clones("avx2", "default"), flatten))
-#else
-#define TUMBLE_LANE_KERNEL
-#endif
 
 namespace {
 

@@ -1,8 +1,9 @@
 // The trajectory hash of a few contact scenes on the coloured wide rows, printed as hex. Built
 // twice (tests/CMakeLists.txt): with the lane kernels as the library has them -- on GCC for
 // x86-64 an AVX2 and a baseline copy, the AVX2 one picked on a machine that has it -- and with
-// contact_rows.cpp compiled again under TUMBLE_NO_LANE_CLONES, the baseline copy alone. The
-// test solver.lane-clone-bits compares the two prints: contact_rows.h promises the same bits.
+// contact_rows.cpp and contact_solver.cpp (prepare's pass) compiled again under
+// TUMBLE_NO_LANE_CLONES, the baseline copy alone. The test solver.lane-clone-bits compares the
+// two prints: contact_rows.h and lane_kernel.h promise the same bits.
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>

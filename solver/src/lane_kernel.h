@@ -1,0 +1,14 @@
+#pragma once
+// TUMBLE_LANE_KERNEL: a function compiled twice, for AVX2 and for the x86-64 baseline, the copy
+// chosen when the program loads (GCC's target_clones), with every call in it inlined (flatten)
+// so that the helpers run in the chosen copy too. Every operation is the same IEEE operation in
+// both and no FMA is formed (-ffp-contract=off), so the bits are the same on every machine
+// (tests: solver.lane-clone-bits builds the baseline alone under TUMBLE_NO_LANE_CLONES).
+// The contact rows' lane kernels (contact_rows.cpp) and prepare's per-manifold pass
+// (contact_solver.cpp).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
+    !defined(TUMBLE_NO_LANE_CLONES)
+#define TUMBLE_LANE_KERNEL __attribute__((target_clones("avx2", "default"), flatten))
+#else
+#define TUMBLE_LANE_KERNEL
+#endif
