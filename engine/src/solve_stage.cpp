@@ -23,14 +23,19 @@ constexpr Real kProjectionCompliance = 0.01;
 // Relative stretch below which post-stabilisation leaves a spring alone.
 constexpr Real kNegligibleStretch = 1e-12;
 
-// What this step's forces did to the velocity of a body point (m/s): the solver turns it into
-// the time and speed of an impact within the step.
-Vec3 velocityChangeAt(const BodyStore& bodies, std::uint32_t index, const Vec3& r) {
-    const BodyMotion& now = bodies.motion[index];
-    const BodyMotion& start = bodies.previousMotion[index];
-    return (now.linearVelocity - start.linearVelocity) +
-           (now.angularVelocity - start.angularVelocity).cross(r);
-}
+// What this step's forces did to a body's velocities: the change of its point at r is
+// linear + angular x r, which the solver turns into the time and speed of an impact within the
+// step. Taken once per manifold and body, not per point (the same operations: 0.9 % of
+// pyramid-20's instructions were these differences, taken again for each point).
+struct VelocityChange {
+    Vec3 linear;
+    Vec3 angular;
+    VelocityChange(const BodyStore& bodies, std::uint32_t index)
+        : linear(bodies.motion[index].linearVelocity - bodies.previousMotion[index].linearVelocity),
+          angular(bodies.motion[index].angularVelocity -
+                  bodies.previousMotion[index].angularVelocity) {}
+    Vec3 at(const Vec3& r) const { return linear + angular.cross(r); }
+};
 
 }  // namespace
 
@@ -77,6 +82,8 @@ std::span<ContactConstraint> SolveStage::buildConstraints(const BodyStore& bodie
         // The solver builds its tangent basis from the normal; cached friction is kept in world
         // coordinates so a turning basis does not scramble it.
         c.tangents = frictionBasis(c.normal);
+        const VelocityChange changeA(bodies, indexA);
+        const VelocityChange changeB(bodies, indexB);
         for (int i = 0; i < c.pointCount; ++i) {
             const ContactPoint& point = contact.manifold.points[i];
             ContactConstraintPoint& p = c.points[i];
@@ -86,9 +93,8 @@ std::span<ContactConstraint> SolveStage::buildConstraints(const BodyStore& bodie
             p.normalImpulse = contact.normalImpulse[i];
             p.tangentImpulse = {contact.tangentImpulse[i].dot(c.tangents[0]),
                                 contact.tangentImpulse[i].dot(c.tangents[1])};
-            p.normalAcceleration = c.normal.dot(velocityChangeAt(bodies, indexB, p.rB) -
-                                                velocityChangeAt(bodies, indexA, p.rA)) *
-                                   context.inverseH;
+            p.normalAcceleration =
+                c.normal.dot(changeB.at(p.rB) - changeA.at(p.rA)) * context.inverseH;
         }
         constraintContact_.push_back(slot);
     }
