@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tumble/core/lane_kernel.h"
+
 namespace tumble::detail {
 namespace {
 
@@ -137,9 +139,11 @@ std::uint32_t pointId(bool referenceIsA, std::uint32_t referenceFeature, const P
 
 }  // namespace
 
-void clipToManifold(const ReferenceFace& reference, std::span<const ClipVertex> incident,
-                    bool referenceIsA, Real margin, Manifold& out, const Vec3* contactNormal,
-                    Real depthTolerance) {
+// Compiled for AVX2 and the baseline like collideBoxes (lane_kernel.h).
+TUMBLE_LANE_KERNEL void clipToManifold(const ReferenceFace& reference,
+                                       std::span<const ClipVertex> incident, bool referenceIsA,
+                                       Real margin, Manifold& out, const Vec3* contactNormal,
+                                       Real depthTolerance) {
     out.clear();
     out.normal = contactNormal != nullptr
                      ? *contactNormal

@@ -12,6 +12,7 @@
 
 #include "clipping.h"
 #include "pair_routines.h"
+#include "tumble/core/lane_kernel.h"
 
 namespace tumble::detail {
 namespace {
@@ -222,8 +223,10 @@ void collideSphereBox(const Shape& a, const Transform& poseA, const Shape& b,
     out.add((surfaceA + surfaceB) / 2, separation, 0);
 }
 
-void collideBoxes(const Shape& a, const Transform& poseA, const Shape& b, const Transform& poseB,
-                  Real margin, Manifold& out) {
+// Compiled for AVX2 and the baseline (lane_kernel.h: the same bits); with the clipping, 8.8 %
+// of pyramid-20's instructions.
+TUMBLE_LANE_KERNEL void collideBoxes(const Shape& a, const Transform& poseA, const Shape& b,
+                                     const Transform& poseB, Real margin, Manifold& out) {
     out.clear();
     const OrientedBox boxA = orientedBox(a, poseA);
     const OrientedBox boxB = orientedBox(b, poseB);

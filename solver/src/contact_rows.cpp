@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "contact_kernels.h"
-#include "lane_kernel.h"
 #include "normal_block.h"
+#include "tumble/core/lane_kernel.h"
 
 namespace tumble {
 namespace {

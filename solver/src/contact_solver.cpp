@@ -5,9 +5,9 @@
 
 #include "bounce_support.h"
 #include "contact_kernels.h"
-#include "lane_kernel.h"
 #include "normal_block.h"
 #include "tumble/core/error.h"
+#include "tumble/core/lane_kernel.h"
 
 namespace tumble {
 namespace {

@@ -4,8 +4,9 @@
 // so that the helpers run in the chosen copy too. Every operation is the same IEEE operation in
 // both and no FMA is formed (-ffp-contract=off), so the bits are the same on every machine
 // (tests: solver.lane-clone-bits builds the baseline alone under TUMBLE_NO_LANE_CLONES).
-// The contact rows' lane kernels (contact_rows.cpp) and prepare's per-manifold pass
-// (contact_solver.cpp).
+// The contact rows' lane kernels (contact_rows.cpp), prepare's passes and the residual
+// (contact_solver.cpp), the box-box narrowphase (collide_box.cpp, clipping.cpp). Internal:
+// not installed (docs/ARCHITECTURE.md, Public headers).
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
     !defined(TUMBLE_NO_LANE_CLONES)
 #define TUMBLE_LANE_KERNEL __attribute__((target_clones("avx2", "default"), flatten))
