@@ -256,9 +256,10 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle, const SolverS
                                                    Lane (&v)[2][6]) {
     const Lane omega = splat(settings.relaxation);
     const bool coupled = settings.friction == FrictionModel::Coupled;
+    Point* const slots = points_.data() + bundle.firstPoint;
     Real largestChange = 0;
     for (int i = 0; i < bundle.maxPoints; ++i) {
-        Point& q = points_[bundle.firstPoint + i];
+        Point& q = slots[i];
         Lane dv[3];
         for (int k = 0; k < 3; ++k)
             dv[k] = v[1][k] - v[0][k];
@@ -400,6 +401,9 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
     for (int k = 0; k < 3; ++k)
         dv[k] = v[1][k] - v[0][k];
     const Lane normalDv = dot(bundle.normal, dv);
+    // The bundle's point slots from one pointer: indexed through the vector, each access
+    // formed firstPoint + i and its 1,888-byte offset again.
+    Point* const slots = points_.data() + bundle.firstPoint;
     // Slots past maxPoints are empty in every lane (zero impulses, rows and block entries).
     // The arrays' zeros past them are stored one by one, in the loops: initialised as `= {}`,
     // each array was a rep stos (17 instructions by callgrind, five a call: 6 % of the kernel).
@@ -412,7 +416,7 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
             gap[i] = Lane{};
             continue;
         }
-        const Point& q = points_[bundle.firstPoint + i];
+        const Point& q = slots[i];
         old[i] = q.normalImpulse;
         const Lane target = (q.targetBase + biasH * q.depth) - q.correction;
         const Lane speed = (normalDv + dot(q.angularB, v[1] + 3)) - dot(q.angularA, v[0] + 3);
@@ -465,7 +469,7 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
         next[0] = next[1] = next[2] = next[3] = Lane{};
     }
     if (points > 0) {
-        const Lane mass = points_[bundle.firstPoint].normalMass;
+        const Lane mass = slots[0].normalMass;
         Lane one;
         if (soft) {
             const Lane scaled = soft_[bundle.firstPoint].scale * (old[0] - mass * gap[0]);
@@ -476,21 +480,40 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
         next[0] = select(single, one, next[0]);
     }
     Lane delta[4];
+    Lane linearA[4];  // m_A^-1 delta, m_B^-1 delta
+    Lane linearB[4];
     for (int i = 0; i < 4; ++i) {
         if (i >= points) {
             delta[i] = Lane{};
             continue;
         }
         delta[i] = select(update, next[i] - old[i], Lane{});
-        Point& q = points_[bundle.firstPoint + i];
-        for (int j = 0; j < 3; ++j) {
-            v[0][j] -= (bundle.inverseMassA * delta[i]) * bundle.normal[j];
-            v[0][3 + j] -= delta[i] * q.impulseA[j];
-            v[1][j] += (bundle.inverseMassB * delta[i]) * bundle.normal[j];
-            v[1][3 + j] += delta[i] * q.impulseB[j];
-        }
-        q.normalImpulse = select(update, next[i], old[i]);
+        linearA[i] = bundle.inverseMassA * delta[i];
+        linearB[i] = bundle.inverseMassB * delta[i];
     }
+    // Each velocity value takes the points' changes in point order, as one point after another
+    // did, but is loaded and stored once: with the impulses' stores between the points (which
+    // might have aliased v), every value went through memory at every point, and m^-1 delta was
+    // formed again for each of the three axes.
+    for (int j = 0; j < 3; ++j) {
+        Lane a = v[0][j];
+        Lane b = v[1][j];
+        Lane angularA = v[0][3 + j];
+        Lane angularB = v[1][3 + j];
+        for (int i = 0; i < points; ++i) {
+            const Point& q = slots[i];
+            a -= linearA[i] * bundle.normal[j];
+            angularA -= delta[i] * q.impulseA[j];
+            b += linearB[i] * bundle.normal[j];
+            angularB += delta[i] * q.impulseB[j];
+        }
+        v[0][j] = a;
+        v[0][3 + j] = angularA;
+        v[1][j] = b;
+        v[1][3 + j] = angularB;
+    }
+    for (int i = 0; i < points; ++i)
+        slots[i].normalImpulse = select(update, next[i], old[i]);
     scatter(bundle, v);
     Real largestChange = 0;
     if (settings.tolerance > 0) {
