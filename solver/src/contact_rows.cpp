@@ -257,8 +257,12 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle, const SolverS
     const Lane omega = splat(settings.relaxation);
     const bool coupled = settings.friction == FrictionModel::Coupled;
     Point* const slots = points_.data() + bundle.firstPoint;
+    // Read once: the impulses' and velocities' stores might alias them, and both were loaded
+    // again at every point.
+    const int points = bundle.maxPoints;
+    const bool measure = settings.tolerance > 0;
     Real largestChange = 0;
-    for (int i = 0; i < bundle.maxPoints; ++i) {
+    for (int i = 0; i < points; ++i) {
         Point& q = slots[i];
         Lane dv[3];
         for (int k = 0; k < 3; ++k)
@@ -324,7 +328,7 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle, const SolverS
         }
         q.tangentImpulse[0] = next0;
         q.tangentImpulse[1] = next1;
-        if (settings.tolerance > 0) {
+        if (measure) {
             const Lane* k = q.tangentBlock;
             const Lane change0 = k[0] * delta0 + k[1] * delta1;
             const Lane change1 = k[2] * delta0 + k[3] * delta1;
