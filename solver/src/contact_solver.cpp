@@ -294,7 +294,9 @@ TUMBLE_LANE_KERNEL void prepareManifold(const SolverBody& a, const SolverBody& b
         if (!settings.warmStart)
             p.normalImpulse = 0;
     }
-    c.normalBlock.setZero();
+    // Zeros only where no point writes (a rep stos of 16 quadwords for every manifold before).
+    if (c.pointCount < 4)
+        c.normalBlock.setZero();
     for (int i = 0; i < c.pointCount; ++i) {
         const ContactConstraintPoint& p = c.points[i];
         for (int j = 0; j < c.pointCount; ++j) {
