@@ -27,10 +27,12 @@ public:
     /// to have at the end of the step: B's anchor - A's on the tangent plane, plus the bend of
     /// the points' paths over the step (m, world), into drifts[0 .. c.pointCount). Seats the
     /// manifold's anchors afresh (drift: the bend only) when a point has none, when a point
-    /// rolled away from its anchors, or moved `lengths.reach` from them.
+    /// rolled away from its anchors, or moved `lengths.reach` from them, and with `reseatStale`
+    /// (the default step's pass, whose drift this is) when the pass did not halve last step's
+    /// drift (a stale seat: anchor_table.cpp).
     void drifts(std::uint32_t slot, const Contact& contact, const BodyMotion& a,
                 const BodyMotion& b, Real h, const ContactConstraint& c,
-                const AnchorLengths& lengths, Vec3* drifts);
+                const AnchorLengths& lengths, bool reseatStale, Vec3* drifts);
     /// After the solve: a manifold whose friction reached its Coulomb limit slips as a whole,
     /// and its anchors are seated afresh next step.
     void release(std::uint32_t slot, const ContactConstraint& c);
@@ -45,6 +47,10 @@ private:
         std::array<std::uint32_t, 4> feature{};  ///< the manifold point each anchor belongs to
         int count = 0;                           ///< anchors seated; 0: none
         std::uint64_t solve = 0;                 ///< the solve that last used them
+        /// The largest point drift handed to the pass in that solve (m); 0 without reseatStale
+        Real drift = 0;
+        /// Seated afresh as stale, and not yet back within the deadband since (anchor_table.cpp)
+        bool reseated = false;
     };
     std::vector<Entry> entries_;  ///< by contact slot
     std::uint64_t solve_ = 0;

@@ -347,7 +347,7 @@ struct CheckpointAccess {
         io(a, w.contacts);
         AnchorTable& anchors = w.solve.anchors_;
         sequence(a, anchors.entries_, [&](AnchorTable::Entry& e) {
-            fields(a, e.onA, e.onB, e.feature, e.count, e.solve);
+            fields(a, e.onA, e.onB, e.feature, e.count, e.solve, e.drift, e.reseated);
         });
         fields(a, anchors.solve_);
         // The thread contacts' warm start (thread_contacts.h): indices only compared, never used

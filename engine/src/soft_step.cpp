@@ -96,9 +96,10 @@ void SolveStage::seatSoftAnchors(const BodyStore& bodies, const ContactManager& 
                                  const AnchorLengths& lengths) {
     anchors_.beginSolve();
     anchorDrifts_.assign(4 * constraints.size(), Vec3::Zero());
-    // No bend predicted here (h = 0): addSoftSlips adds the one the substeps' turn made.
+    // No bend predicted here (h = 0): addSoftSlips adds the one the substeps' turn made. Nor
+    // the default step's re-seat of stale anchors: these drifts are not yet what the pass aims at.
     for (std::size_t j = 0; j < constraints.size(); ++j)
-        anchorDrift(bodies, contacts, j, constraints[j], 0, lengths);
+        anchorDrift(bodies, contacts, j, constraints[j], 0, lengths, false);
 }
 
 // What the substeps' velocities, those the positions move with, slid each point by on the

@@ -265,17 +265,18 @@ void SolveStage::holdAnchors(const BodyStore& bodies, const ContactManager& cont
         const ContactConstraint& c = constraints[j];
         if (sprung_[c.bodyA] != 0 || sprung_[c.bodyB] != 0 || AnchorTable::slips(c))
             continue;
-        anchorDrift(bodies, contacts, j, c, context.h, lengths);
+        anchorDrift(bodies, contacts, j, c, context.h, lengths, true);
     }
     anchorPass_.run(solverBodies_, constraints, anchorDrifts_, pseudo_, context.inverseH, lengths);
 }
 
 void SolveStage::anchorDrift(const BodyStore& bodies, const ContactManager& contacts, std::size_t j,
-                             const ContactConstraint& c, Real h, const AnchorLengths& lengths) {
+                             const ContactConstraint& c, Real h, const AnchorLengths& lengths,
+                             bool reseatStale) {
     const std::uint32_t slot = constraintContact_[j];
     const Contact& contact = contacts.contact(slot);
     anchors_.drifts(slot, contact, bodies.motion[bodies.indexOf(contact.bodyA)],
-                    bodies.motion[bodies.indexOf(contact.bodyB)], h, c, lengths,
+                    bodies.motion[bodies.indexOf(contact.bodyB)], h, c, lengths, reseatStale,
                     &anchorDrifts_[4 * j]);
 }
 

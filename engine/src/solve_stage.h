@@ -85,9 +85,11 @@ private:
     void softSubsteps(BodyStore& bodies, std::span<ContactConstraint> constraints,
                       const StepContext& context, const SolverSettings& settings);
     /// Constraint j's (c's) anchors kept or seated and their drifts, over a step h, into
-    /// anchorDrifts_ (AnchorTable::drifts).
+    /// anchorDrifts_ (AnchorTable::drifts; `reseatStale`: the default step's, whose drifts are
+    /// complete there).
     void anchorDrift(const BodyStore& bodies, const ContactManager& contacts, std::size_t j,
-                     const ContactConstraint& c, Real h, const AnchorLengths& lengths);
+                     const ContactConstraint& c, Real h, const AnchorLengths& lengths,
+                     bool reseatStale);
     /// The soft step's friction anchors (soft_step.cpp): their drifts as the default step's,
     /// at the step's start; after the substeps, the anchor pass as one displacement.
     void seatSoftAnchors(const BodyStore& bodies, const ContactManager& contacts,
