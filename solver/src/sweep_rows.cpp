@@ -1,6 +1,7 @@
 #include "tumble/solver/sweep_rows.h"
 
 #include <algorithm>
+#include <bit>
 
 #include "contact_kernels.h"
 #include "normal_block.h"
@@ -78,6 +79,7 @@ void SweepRows::clear() {
     pointCount_ = 0;
     blocks_.clear();
     grouped_.clear();
+    targetsStale_ = true;
 }
 
 void SweepRows::add(const ContactConstraint& c, std::uint32_t index,
@@ -93,6 +95,7 @@ void SweepRows::add(const ContactConstraint& c, std::uint32_t index,
     m.normal = c.normal;
     m.tangents = c.tangents;
     m.friction = c.friction;
+    targetsStale_ = true;
     if (m.grouped)
         grouped_.push_back(static_cast<std::uint32_t>(manifolds_.size() - 1));
     else if (c.pointCount > 1 || settings.tolerance > 0) {
@@ -129,12 +132,24 @@ Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint>
                       std::span<NormalFactor> factors, const SolverSettings& settings,
                       Real inverseH, Real bias, const Real* softScales) {
     Real largestChange = 0;
+    // The targets are the same in every sweep of a phase (biased, relax): the first computes
+    // them. Compared as bits, so a -0 bias or a NaN is not taken for another value.
+    const std::array<std::uint64_t, 3> inputs = {std::bit_cast<std::uint64_t>(bias),
+                                                 std::bit_cast<std::uint64_t>(settings.slop),
+                                                 std::bit_cast<std::uint64_t>(inverseH)};
+    const bool refresh = targetsStale_ || inputs != targetInputs_;
+    targetsStale_ = false;
+    targetInputs_ = inputs;
     for (const SweepManifold& m : manifolds_) {
         SolverBody& bodyA = bodies[m.bodyA];
         SolverBody& bodyB = bodies[m.bodyB];
         SweepBody a(bodyA);
         SweepBody b(bodyB);
         SweepPoint* points = points_.data() + m.firstPoint;
+        if (refresh) {
+            for (int i = 0; i < m.pointCount; ++i)
+                points[i].target = normalTarget(points[i], bias, settings.slop, inverseH);
+        }
         // Friction first, with the normal impulses of the last sweep: non-penetration, solved
         // last, matters more. The soft step's biased sweep leaves the friction of exactly
         // solved groups to its relax sweep (ContactSolver::softSweep says why).
@@ -175,6 +190,7 @@ void SweepRows::softTargets(std::span<const Real> separations,
         points_[k].separation = separations[k];
     for (SweepManifold& m : manifolds_)
         m.tangentTarget = tangentTargets[m.constraint];
+    targetsStale_ = true;
 }
 
 void SweepRows::dropBounces() {
@@ -182,6 +198,7 @@ void SweepRows::dropBounces() {
         p.bounces = false;
         p.bounceCorrection = 0;
     }
+    targetsStale_ = true;
 }
 
 void SweepRows::warmStart(std::span<SolverBody> bodies,
@@ -211,6 +228,7 @@ void SweepRows::readGroupImpulses(std::span<const ContactConstraint> constraints
 void SweepRows::dropBounceCorrections() {
     for (SweepPoint& p : points())
         p.bounceCorrection = 0;
+    targetsStale_ = true;
 }
 
 void SweepRows::store(std::span<ContactConstraint> constraints) const {

@@ -37,10 +37,14 @@ struct SweepPoint {
     Vec3 angularA = Vec3::Zero();           ///< rA x n (m)
     Vec3 angularB = Vec3::Zero();           ///< rB x n (m)
     Real separation = 0;                    ///< (m), for normalTarget
-    Real reboundSpeed = 0;                  ///< (m/s)
-    Real bounceCorrection = 0;              ///< (m)
-    Vec3 angularImpulseA = Vec3::Zero();    ///< IA^-1 (rA x n)
-    Vec3 angularImpulseB = Vec3::Zero();    ///< IB^-1 (rB x n)
+    /// normalTarget at the sweep's bias, slop and 1/h, set by the first sweep that uses them
+    /// (SweepRows::sweep): it is the same for all the sweeps of a phase, and recomputed in each
+    /// it was a tenth of a pile's normal rows.
+    Real target = 0;                      ///< (m/s)
+    Real reboundSpeed = 0;                ///< (m/s)
+    Real bounceCorrection = 0;            ///< (m)
+    Vec3 angularImpulseA = Vec3::Zero();  ///< IA^-1 (rA x n)
+    Vec3 angularImpulseB = Vec3::Zero();  ///< IB^-1 (rB x n)
     bool bounces = false;
 };
 
@@ -99,6 +103,10 @@ private:
     std::size_t pointCount_ = 0;
     std::vector<Eigen::Matrix<Real, 4, 4>> blocks_;  ///< normal blocks (normal_block.h)
     std::vector<std::uint32_t> grouped_;             ///< manifolds with grouped normal rows
+    /// What the points' targets were computed with (bit patterns); stale after anything that
+    /// changes a point's target inputs (add, softTargets, dropBounces, dropBounceCorrections).
+    bool targetsStale_ = true;
+    std::array<std::uint64_t, 3> targetInputs_{};  ///< bias, slop, 1/h
 };
 
 }  // namespace tumble
