@@ -26,8 +26,10 @@ struct NormalFactor;
 /// A point's rows, in the order the sweep reads them (names as ContactConstraintPoint's, so the
 /// normal kernels of normal_block.h take either).
 struct SweepPoint {
-    std::array<Vec3, 2> tangentAngularA{};  ///< rA x t_k (m)
-    std::array<Vec3, 2> tangentAngularB{};  ///< rB x t_k (m)
+    /// rA x t_k and rB x t_k (m) by axis, [axis][k]: the sweep forms v_t along t_1 and t_2 in
+    /// the two lanes of one register, with the dot products' operations in their order.
+    std::array<std::array<Real, 2>, 3> tangentAngularA{};
+    std::array<std::array<Real, 2>, 3> tangentAngularB{};
     DiscBlock tangent;  ///< K on the tangent plane, with its inverse and eigen-decomposition
     std::array<Real, 2> tangentImpulse{};   ///< along t_1, t_2 (N s)
     Real normalImpulse = 0;                 ///< (N s)
@@ -61,6 +63,7 @@ struct SweepManifold {
     bool grouped = false;  ///< normal rows solved by NormalIslands
     Vec3 normal = Vec3::UnitZ();
     std::array<Vec3, 2> tangents{};
+    std::array<std::array<Real, 2>, 3> tangentAxes{};  ///< the tangents by axis, [axis][k]
     Real friction = 0;
     /// The friction rows' target: v_t along t_1, t_2 (m/s); 0 but in the soft step.
     std::array<Real, 2> tangentTarget{};
