@@ -65,6 +65,35 @@ void carryImpulses(Contact& contact, const Manifold& next) {
     contact.manifold = next;
 }
 
+// Merges the sorted `added` into the sorted `list` in place, in std::merge's order (a list
+// element before an equal added one). When few are added, each finds its place by a binary
+// search and the list's elements after it move as a block: std::merge into a scratch list
+// compared every element of the list, ~33,000 a step on pile-1000 for the few pairs activated.
+template <class Less>
+void mergeInto(std::vector<std::uint32_t>& list, const std::vector<std::uint32_t>& added,
+               std::vector<std::uint32_t>& scratch, Less less) {
+    if (added.size() * 16 > list.size()) {  // many: the binary searches would cost more
+        scratch.clear();
+        std::merge(list.begin(), list.end(), added.begin(), added.end(),
+                   std::back_inserter(scratch), less);
+        list.swap(scratch);
+        return;
+    }
+    std::size_t end = list.size();  // list[0, end) is not yet in its final place
+    list.resize(end + added.size());
+    std::size_t out = list.size();  // list[out, size) is
+    for (std::size_t j = added.size(); j-- > 0;) {
+        const auto at = std::upper_bound(
+            list.begin(), list.begin() + static_cast<std::ptrdiff_t>(end), added[j], less);
+        const std::size_t from = static_cast<std::size_t>(at - list.begin());
+        std::move_backward(at, list.begin() + static_cast<std::ptrdiff_t>(end),
+                           list.begin() + static_cast<std::ptrdiff_t>(out));
+        out -= end - from;
+        list[--out] = added[j];
+        end = from;
+    }
+}
+
 ContactEvent touchEvent(const Contact& contact) {
     return {contact.shapeA, contact.shapeB, contact.bodyA, contact.bodyB};
 }
@@ -307,20 +336,13 @@ void ContactManager::flushActivations() {
     std::sort(activated_.begin(), activated_.end(), byKey);
     for (const std::uint32_t slot : activated_)
         state_[slot].listed = true;
-    scratch_.clear();
-    std::merge(active_.begin(), active_.end(), activated_.begin(), activated_.end(),
-               std::back_inserter(scratch_), byKey);
-    active_.swap(scratch_);
+    mergeInto(active_, activated_, scratch_, byKey);
     // The touching ones among them (a woken island's parked manifolds) join touching_ likewise.
     std::erase_if(activated_, [this](std::uint32_t slot) {
         return pool_[slot].contact.manifold.pointCount == 0;
     });
-    if (!activated_.empty()) {
-        touchingScratch_.clear();
-        std::merge(touching_.begin(), touching_.end(), activated_.begin(), activated_.end(),
-                   std::back_inserter(touchingScratch_), byKey);
-        touching_.swap(touchingScratch_);
-    }
+    if (!activated_.empty())
+        mergeInto(touching_, activated_, touchingScratch_, byKey);
     activated_.clear();
 }
 
