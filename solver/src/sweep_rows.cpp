@@ -58,8 +58,9 @@ template <bool kCoupled, bool kMeasure>
 Real solveFriction(SweepBody& a, SweepBody& b, const SweepManifold& m, SweepPoint* points,
                    const ContactConstraint& c, Real omega) {
     Real largestChange = 0;
-    const Vec3 t0 = m.tangents[0];
-    const Vec3 t1 = m.tangents[1];
+    const std::array<Vec3, 2> tangents = m.tangents();
+    const Vec3& t0 = tangents[0];
+    const Vec3& t1 = tangents[1];
     const Pair target = loadPair(m.tangentTarget.data());
     const Real friction = m.friction;
     const int count = m.pointCount;
@@ -129,7 +130,6 @@ void SweepRows::add(const ContactConstraint& c, std::uint32_t index,
     m.angular = c.spinMass > 0 || c.rollingActive;
     m.grouped = c.normalGroup != NormalIslands::kNone;
     m.normal = c.normal;
-    m.tangents = c.tangents;
     for (int axis = 0; axis < 3; ++axis)
         m.tangentAxes[axis] = {c.tangents[0](axis), c.tangents[1](axis)};
     m.friction = c.friction;
@@ -246,8 +246,9 @@ void SweepRows::warmStart(std::span<SolverBody> bodies,
     for (const SweepManifold& m : manifolds_) {
         SolverBody& a = bodies[m.bodyA];
         SolverBody& b = bodies[m.bodyB];
+        const std::array<Vec3, 2> tangents = m.tangents();
         for (int i = 0; i < m.pointCount; ++i)
-            warmStartPoint(a, b, m.normal, m.tangents, points_[m.firstPoint + i]);
+            warmStartPoint(a, b, m.normal, tangents, points_[m.firstPoint + i]);
         if (m.angular) {
             const Vec3& turn = constraints[m.constraint].angularImpulse;
             a.angularVelocity -= a.inverseInertia * turn;

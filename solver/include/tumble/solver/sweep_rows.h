@@ -62,11 +62,17 @@ struct SweepManifold {
     bool angular = false;  ///< spinning or rolling rows
     bool grouped = false;  ///< normal rows solved by NormalIslands
     Vec3 normal = Vec3::UnitZ();
-    std::array<Vec3, 2> tangents{};
-    std::array<std::array<Real, 2>, 3> tangentAxes{};  ///< the tangents by axis, [axis][k]
+    /// The friction basis t_1, t_2 by axis, [axis][k]: the sweep forms both rows' slip in two
+    /// lanes (SweepPoint::tangentAngularA), and tangents() gives them back as vectors.
+    std::array<std::array<Real, 2>, 3> tangentAxes{};
     Real friction = 0;
     /// The friction rows' target: v_t along t_1, t_2 (m/s); 0 but in the soft step.
     std::array<Real, 2> tangentTarget{};
+
+    std::array<Vec3, 2> tangents() const {
+        return {Vec3(tangentAxes[0][0], tangentAxes[1][0], tangentAxes[2][0]),
+                Vec3(tangentAxes[0][1], tangentAxes[1][1], tangentAxes[2][1])};
+    }
 };
 
 class SweepRows {
