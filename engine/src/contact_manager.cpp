@@ -65,14 +65,46 @@ void carryImpulses(Contact& contact, const Manifold& next) {
     contact.manifold = next;
 }
 
+// Merges the sorted `added` into the sorted `list` in place, in std::merge's order (a list
+// element before an equal added one). When few are added, each finds its place by a binary
+// search and the list's elements after it move as a block: std::merge into a scratch list
+// compared every element of the list, ~33,000 a step on pile-1000 for the few pairs activated.
+template <class Less>
+void mergeInto(std::vector<std::uint32_t>& list, const std::vector<std::uint32_t>& added,
+               std::vector<std::uint32_t>& scratch, Less less) {
+    if (added.size() * 16 > list.size()) {  // many: the binary searches would cost more
+        scratch.clear();
+        std::merge(list.begin(), list.end(), added.begin(), added.end(),
+                   std::back_inserter(scratch), less);
+        list.swap(scratch);
+        return;
+    }
+    std::size_t end = list.size();  // list[0, end) is not yet in its final place
+    list.resize(end + added.size());
+    std::size_t out = list.size();  // list[out, size) is
+    for (std::size_t j = added.size(); j-- > 0;) {
+        const auto at = std::upper_bound(
+            list.begin(), list.begin() + static_cast<std::ptrdiff_t>(end), added[j], less);
+        const std::size_t from = static_cast<std::size_t>(at - list.begin());
+        std::move_backward(at, list.begin() + static_cast<std::ptrdiff_t>(end),
+                           list.begin() + static_cast<std::ptrdiff_t>(out));
+        out -= end - from;
+        list[--out] = added[j];
+        end = from;
+    }
+}
+
 ContactEvent touchEvent(const Contact& contact) {
     return {contact.shapeA, contact.shapeB, contact.bodyA, contact.bodyB};
 }
 
 }  // namespace
 
+// A shape's body is live while the shape is (destroying a body destroys its shapes, and their
+// contacts): the step's passes look it up unchecked (BodyStore::checkedIndexOf), where the
+// refusal's tests were ~1 % of a pile's step.
 Transform shapePose(const ShapeRecord& shape, const BodyStore& bodies) {
-    const Transform body = bodyTransform(bodies, bodies.indexOf(shape.body));
+    const Transform body = bodyTransform(bodies, bodies.checkedIndexOf(shape.body));
     const Transform& local = shape.def.localPose;
     return {body.apply(local.position), body.rotation * local.rotation};
 }
@@ -117,7 +149,7 @@ void ContactManager::refreshShape(ShapeStore& shapes, std::uint32_t slot, const 
 
 // Moves the proxy when the tight box, swept over the next step, left the fat box.
 void ContactManager::moveProxy(ShapeRecord& shape, const BodyStore& bodies, Real h) {
-    const Vec3& velocity = bodies.motion[bodies.indexOf(shape.body)].linearVelocity;
+    const Vec3& velocity = bodies.motion[bodies.checkedIndexOf(shape.body)].linearVelocity;
     const Aabb swept = sweptBounds(shape.bounds, velocity, h);
     if (!shape.fatBounds.contains(swept)) {
         shape.fatBounds = swept.fattened(aabbMargin);
@@ -304,20 +336,13 @@ void ContactManager::flushActivations() {
     std::sort(activated_.begin(), activated_.end(), byKey);
     for (const std::uint32_t slot : activated_)
         state_[slot].listed = true;
-    scratch_.clear();
-    std::merge(active_.begin(), active_.end(), activated_.begin(), activated_.end(),
-               std::back_inserter(scratch_), byKey);
-    active_.swap(scratch_);
+    mergeInto(active_, activated_, scratch_, byKey);
     // The touching ones among them (a woken island's parked manifolds) join touching_ likewise.
     std::erase_if(activated_, [this](std::uint32_t slot) {
         return pool_[slot].contact.manifold.pointCount == 0;
     });
-    if (!activated_.empty()) {
-        touchingScratch_.clear();
-        std::merge(touching_.begin(), touching_.end(), activated_.begin(), activated_.end(),
-                   std::back_inserter(touchingScratch_), byKey);
-        touching_.swap(touchingScratch_);
-    }
+    if (!activated_.empty())
+        mergeInto(touching_, activated_, touchingScratch_, byKey);
     activated_.clear();
 }
 
@@ -372,8 +397,8 @@ void ContactManager::collideActive(const ShapeStore& shapes, BodyStore& bodies,
             continue;  // collided with its pair's own record
         const ShapeRecord& shapeA = shapes.records[state.shapeA];
         const ShapeRecord& shapeB = shapes.records[state.shapeB];
-        const std::uint32_t indexA = bodies.indexOf(shapeA.body);
-        const std::uint32_t indexB = bodies.indexOf(shapeB.body);
+        const std::uint32_t indexA = bodies.checkedIndexOf(shapeA.body);  // see shapePose
+        const std::uint32_t indexB = bodies.checkedIndexOf(shapeB.body);
         const Vec3 relativeVelocity =
             bodies.motion[indexB].linearVelocity - bodies.motion[indexA].linearVelocity;
         const Real margin = contactMargin + context.h * relativeVelocity.norm();

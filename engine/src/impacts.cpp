@@ -22,12 +22,12 @@ Real totalNormalImpulse(const Contact& contact) {
 }
 
 // The contact was solved this step (as the solve stage decides: active, touching, no
-// sleeping body).
+// sleeping body). A live contact's bodies are live: they are looked up unchecked.
 bool wasSolved(const ContactManager& contacts, const BodyStore& bodies, std::uint32_t slot) {
     const Contact& contact = contacts.contact(slot);
     return contacts.isAlive(slot) && contacts.isActive(slot) && contact.manifold.pointCount > 0 &&
-           !bodies.isSleeping(bodies.indexOf(contact.bodyA)) &&
-           !bodies.isSleeping(bodies.indexOf(contact.bodyB));
+           !bodies.isSleeping(bodies.checkedIndexOf(contact.bodyA)) &&
+           !bodies.isSleeping(bodies.checkedIndexOf(contact.bodyB));
 }
 
 }  // namespace
@@ -45,8 +45,8 @@ void ImpactTracker::update(const ContactManager& contacts, const BodyStore& bodi
             const Real impulse = totalNormalImpulse(contact);
             if (!(impulse > 0))
                 continue;
-            const std::uint32_t a = bodies.indexOf(contact.bodyA);
-            const std::uint32_t b = bodies.indexOf(contact.bodyB);
+            const std::uint32_t a = bodies.checkedIndexOf(contact.bodyA);
+            const std::uint32_t b = bodies.checkedIndexOf(contact.bodyB);
             const Vec3& normal = contact.manifold.normal;
             Real approach = -std::numeric_limits<Real>::infinity();
             Vec3 weighted = Vec3::Zero();

@@ -60,6 +60,16 @@ inline void solveRelaxedDisc(const DiscBlock& k, const Eigen::Matrix<Real, 2, 1>
 /// change as a speed at the farthest point (m/s).
 Real solveAngularFriction(SolverBody& a, SolverBody& b, ContactConstraint& c, Real omega);
 
+/// A point's normalTarget, or the one it keeps (SweepPoint::target, computed with the same
+/// bias, slop and 1/h: SweepRows::sweep).
+template <class Point>
+inline Real pointTarget(const Point& p, Real bias, Real slop, Real inverseH) {
+    if constexpr (requires { p.target; })
+        return p.target;
+    else
+        return normalTarget(p, bias, slop, inverseH);
+}
+
 /// The normal rows of one manifold of n points (Point: ContactConstraintPoint or SweepPoint):
 /// its block K solved exactly (normal_block.h) with the cached factor, or point by point when it
 /// has one point or the block is degenerate. K is read only when n > 1 or when measuring. Raises
@@ -72,13 +82,32 @@ void solveNormals(Body& a, Body& b, const Vec3& normal, const Mat4* k, Point* po
                   NormalFactor& factor, const SolverSettings& settings, Real inverseH, Real bias,
                   Real& largestChange, const Real* softScale = nullptr) {
     const Real omega = settings.relaxation;
+    if (n == 1 && !(settings.tolerance > 0)) {
+        // One point (most of a pile's manifolds): the loop below for i = 0, without the 4-vectors
+        // (their zeroing, copies and store back: ~40 instructions a one-point manifold).
+        Point& p = points[0];
+        const Real old = p.normalImpulse;
+        const Real vn =
+            normalSpeed(a, b, normal, p) - pointTarget(p, bias, settings.slop, inverseH);
+        Real next;
+        if (softScale == nullptr) {
+            next = std::max<Real>(0, old - omega * p.normalMass * vn);
+        } else {
+            const Real scale = p.separation > 0 ? 1 : *softScale;
+            const Real soft = scale * (old - p.normalMass * vn);
+            next = std::max<Real>(0, old + omega * (soft - old));
+        }
+        applyNormal(a, b, normal, p, next - old);
+        p.normalImpulse = next;
+        return;
+    }
     Vec4 old = Vec4::Zero();
     Vec4 next = Vec4::Zero();
     Vec4 gap = Vec4::Zero();  // v_n - target with the current impulses (m/s)
     for (int i = 0; i < n; ++i) {
         const Point& p = points[i];
         old(i) = p.normalImpulse;
-        gap(i) = normalSpeed(a, b, normal, p) - normalTarget(p, bias, settings.slop, inverseH);
+        gap(i) = normalSpeed(a, b, normal, p) - pointTarget(p, bias, settings.slop, inverseH);
     }
     Vec4 exact = old;
     bool solved = false;
@@ -103,7 +132,7 @@ void solveNormals(Body& a, Body& b, const Vec3& normal, const Mat4* k, Point* po
             Point& p = points[i];
             const Real vn = i == 0 ? gap(0)
                                    : normalSpeed(a, b, normal, p) -
-                                         normalTarget(p, bias, settings.slop, inverseH);
+                                         pointTarget(p, bias, settings.slop, inverseH);
             if (softScale == nullptr) {
                 next(i) = std::max<Real>(0, old(i) - omega * p.normalMass * vn);
             } else {

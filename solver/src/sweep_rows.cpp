@@ -1,6 +1,7 @@
 #include "tumble/solver/sweep_rows.h"
 
 #include <algorithm>
+#include <bit>
 
 #include "contact_kernels.h"
 #include "normal_block.h"
@@ -10,6 +11,24 @@ namespace tumble {
 namespace {
 
 using Vec2 = Eigen::Matrix<Real, 2, 1>;
+
+// Two lanes (GCC/Clang vector extension, the x86-64 baseline's register): the friction's two
+// tangent rows side by side.
+using Pair = double __attribute__((vector_size(16)));
+
+[[gnu::always_inline]] inline Pair loadPair(const Real* from) {
+    Pair p;
+    __builtin_memcpy(&p, from, sizeof(Pair));
+    return p;
+}
+
+// The two rows' dot products with v, u . v = (u_x v_x + u_y v_y) + u_z v_z as Eigen forms it for
+// a Vec3, in the two lanes: row by row, each took its own horizontal sum.
+[[gnu::always_inline]] inline Pair dotPair(const std::array<std::array<Real, 2>, 3>& rows,
+                                           const Vec3& v) {
+    return (loadPair(rows[0].data()) * v.x() + loadPair(rows[1].data()) * v.y()) +
+           loadPair(rows[2].data()) * v.z();
+}
 
 // A manifold's body while its rows are solved: a local copy of what the rows read and write.
 // Through references into the bodies' array, every point's velocity update was a store that the
@@ -33,24 +52,32 @@ struct SweepBody {
 
 // The friction rows of one manifold's points (contact_solver.h): coupled on the disc, or the
 // box model with its masses from the constraint. Returns the largest change when measuring.
+// The model and the measuring are template arguments, and the manifold's basis is held in
+// locals: the points' stores might alias it, so it was loaded again for every point.
+template <bool kCoupled, bool kMeasure>
 Real solveFriction(SweepBody& a, SweepBody& b, const SweepManifold& m, SweepPoint* points,
-                   const ContactConstraint& c, const SolverSettings& settings) {
-    const Real omega = settings.relaxation;
+                   const ContactConstraint& c, Real omega) {
     Real largestChange = 0;
-    for (int i = 0; i < m.pointCount; ++i) {
+    const std::array<Vec3, 2> tangents = m.tangents();
+    const Vec3& t0 = tangents[0];
+    const Vec3& t1 = tangents[1];
+    const Pair target = loadPair(m.tangentTarget.data());
+    const Real friction = m.friction;
+    const int count = m.pointCount;
+    for (int i = 0; i < count; ++i) {
         SweepPoint& p = points[i];
         const Vec3 dv = b.linearVelocity - a.linearVelocity;
-        Vec2 vt;
-        for (int r = 0; r < 2; ++r) {
-            vt(r) = (m.tangents[r].dot(dv) + p.tangentAngularB[r].dot(b.angularVelocity) -
-                     p.tangentAngularA[r].dot(a.angularVelocity)) -
-                    m.tangentTarget[r];
-        }
+        // v_t(k) = (t_k . dv + (rB x t_k) . wB - (rA x t_k) . wA) - target_k
+        const Pair slip =
+            ((dotPair(m.tangentAxes, dv) + dotPair(p.tangentAngularB, b.angularVelocity)) -
+             dotPair(p.tangentAngularA, a.angularVelocity)) -
+            target;
+        const Vec2 vt(slip[0], slip[1]);
         const Vec2 old(p.tangentImpulse[0], p.tangentImpulse[1]);
-        const Real limit = m.friction * p.normalImpulse;
+        const Real limit = friction * p.normalImpulse;
         Vec2 next;
         Vec2 delta;
-        if (settings.friction == FrictionModel::Coupled) {
+        if constexpr (kCoupled) {
             solveRelaxedDisc(p.tangent, old, vt, limit, omega, next, delta);
         } else {
             const std::array<Real, 2>& mass = c.points[i].tangentMass;
@@ -59,16 +86,27 @@ Real solveFriction(SweepBody& a, SweepBody& b, const SweepManifold& m, SweepPoin
                        .cwiseMin(limit);
             delta = next - old;
         }
-        const Vec3 linear = delta.x() * m.tangents[0] + delta.y() * m.tangents[1];
+        const Vec3 linear = delta.x() * t0 + delta.y() * t1;
         a.linearVelocity -= a.inverseMass * linear;
         a.angularVelocity -= delta.x() * p.tangentImpulseA[0] + delta.y() * p.tangentImpulseA[1];
         b.linearVelocity += b.inverseMass * linear;
         b.angularVelocity += delta.x() * p.tangentImpulseB[0] + delta.y() * p.tangentImpulseB[1];
         p.tangentImpulse = {next.x(), next.y()};
-        if (settings.tolerance > 0)
+        if constexpr (kMeasure)
             largestChange = std::max(largestChange, (p.tangent.block * delta).norm());
     }
     return largestChange;
+}
+
+Real solveFriction(SweepBody& a, SweepBody& b, const SweepManifold& m, SweepPoint* points,
+                   const ContactConstraint& c, const SolverSettings& settings) {
+    const Real omega = settings.relaxation;
+    if (settings.friction == FrictionModel::Coupled) {
+        return settings.tolerance > 0 ? solveFriction<true, true>(a, b, m, points, c, omega)
+                                      : solveFriction<true, false>(a, b, m, points, c, omega);
+    }
+    return settings.tolerance > 0 ? solveFriction<false, true>(a, b, m, points, c, omega)
+                                  : solveFriction<false, false>(a, b, m, points, c, omega);
 }
 
 }  // namespace
@@ -78,6 +116,7 @@ void SweepRows::clear() {
     pointCount_ = 0;
     blocks_.clear();
     grouped_.clear();
+    targetsStale_ = true;
 }
 
 void SweepRows::add(const ContactConstraint& c, std::uint32_t index,
@@ -91,8 +130,10 @@ void SweepRows::add(const ContactConstraint& c, std::uint32_t index,
     m.angular = c.spinMass > 0 || c.rollingActive;
     m.grouped = c.normalGroup != NormalIslands::kNone;
     m.normal = c.normal;
-    m.tangents = c.tangents;
+    for (int axis = 0; axis < 3; ++axis)
+        m.tangentAxes[axis] = {c.tangents[0](axis), c.tangents[1](axis)};
     m.friction = c.friction;
+    targetsStale_ = true;
     if (m.grouped)
         grouped_.push_back(static_cast<std::uint32_t>(manifolds_.size() - 1));
     else if (c.pointCount > 1 || settings.tolerance > 0) {
@@ -106,8 +147,10 @@ void SweepRows::add(const ContactConstraint& c, std::uint32_t index,
         if (pointCount_ == points_.size())
             points_.emplace_back();
         SweepPoint& p = points_[pointCount_++];
-        p.tangentAngularA = q.tangentAngularA;
-        p.tangentAngularB = q.tangentAngularB;
+        for (int axis = 0; axis < 3; ++axis) {
+            p.tangentAngularA[axis] = {q.tangentAngularA[0](axis), q.tangentAngularA[1](axis)};
+            p.tangentAngularB[axis] = {q.tangentAngularB[0](axis), q.tangentAngularB[1](axis)};
+        }
         p.tangent = q.tangent;
         p.tangentImpulse = q.tangentImpulse;
         p.normalImpulse = q.normalImpulse;
@@ -129,12 +172,24 @@ Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint>
                       std::span<NormalFactor> factors, const SolverSettings& settings,
                       Real inverseH, Real bias, const Real* softScales) {
     Real largestChange = 0;
+    // The targets are the same in every sweep of a phase (biased, relax): the first computes
+    // them. Compared as bits, so a -0 bias or a NaN is not taken for another value.
+    const std::array<std::uint64_t, 3> inputs = {std::bit_cast<std::uint64_t>(bias),
+                                                 std::bit_cast<std::uint64_t>(settings.slop),
+                                                 std::bit_cast<std::uint64_t>(inverseH)};
+    const bool refresh = targetsStale_ || inputs != targetInputs_;
+    targetsStale_ = false;
+    targetInputs_ = inputs;
     for (const SweepManifold& m : manifolds_) {
         SolverBody& bodyA = bodies[m.bodyA];
         SolverBody& bodyB = bodies[m.bodyB];
         SweepBody a(bodyA);
         SweepBody b(bodyB);
         SweepPoint* points = points_.data() + m.firstPoint;
+        if (refresh) {
+            for (int i = 0; i < m.pointCount; ++i)
+                points[i].target = normalTarget(points[i], bias, settings.slop, inverseH);
+        }
         // Friction first, with the normal impulses of the last sweep: non-penetration, solved
         // last, matters more. The soft step's biased sweep leaves the friction of exactly
         // solved groups to its relax sweep (ContactSolver::softSweep says why).
@@ -175,6 +230,7 @@ void SweepRows::softTargets(std::span<const Real> separations,
         points_[k].separation = separations[k];
     for (SweepManifold& m : manifolds_)
         m.tangentTarget = tangentTargets[m.constraint];
+    targetsStale_ = true;
 }
 
 void SweepRows::dropBounces() {
@@ -182,6 +238,7 @@ void SweepRows::dropBounces() {
         p.bounces = false;
         p.bounceCorrection = 0;
     }
+    targetsStale_ = true;
 }
 
 void SweepRows::warmStart(std::span<SolverBody> bodies,
@@ -189,8 +246,9 @@ void SweepRows::warmStart(std::span<SolverBody> bodies,
     for (const SweepManifold& m : manifolds_) {
         SolverBody& a = bodies[m.bodyA];
         SolverBody& b = bodies[m.bodyB];
+        const std::array<Vec3, 2> tangents = m.tangents();
         for (int i = 0; i < m.pointCount; ++i)
-            warmStartPoint(a, b, m.normal, m.tangents, points_[m.firstPoint + i]);
+            warmStartPoint(a, b, m.normal, tangents, points_[m.firstPoint + i]);
         if (m.angular) {
             const Vec3& turn = constraints[m.constraint].angularImpulse;
             a.angularVelocity -= a.inverseInertia * turn;
@@ -211,6 +269,7 @@ void SweepRows::readGroupImpulses(std::span<const ContactConstraint> constraints
 void SweepRows::dropBounceCorrections() {
     for (SweepPoint& p : points())
         p.bounceCorrection = 0;
+    targetsStale_ = true;
 }
 
 void SweepRows::store(std::span<ContactConstraint> constraints) const {

@@ -26,8 +26,10 @@ struct NormalFactor;
 /// A point's rows, in the order the sweep reads them (names as ContactConstraintPoint's, so the
 /// normal kernels of normal_block.h take either).
 struct SweepPoint {
-    std::array<Vec3, 2> tangentAngularA{};  ///< rA x t_k (m)
-    std::array<Vec3, 2> tangentAngularB{};  ///< rB x t_k (m)
+    /// rA x t_k and rB x t_k (m) by axis, [axis][k]: the sweep forms v_t along t_1 and t_2 in
+    /// the two lanes of one register, with the dot products' operations in their order.
+    std::array<std::array<Real, 2>, 3> tangentAngularA{};
+    std::array<std::array<Real, 2>, 3> tangentAngularB{};
     DiscBlock tangent;  ///< K on the tangent plane, with its inverse and eigen-decomposition
     std::array<Real, 2> tangentImpulse{};   ///< along t_1, t_2 (N s)
     Real normalImpulse = 0;                 ///< (N s)
@@ -37,10 +39,14 @@ struct SweepPoint {
     Vec3 angularA = Vec3::Zero();           ///< rA x n (m)
     Vec3 angularB = Vec3::Zero();           ///< rB x n (m)
     Real separation = 0;                    ///< (m), for normalTarget
-    Real reboundSpeed = 0;                  ///< (m/s)
-    Real bounceCorrection = 0;              ///< (m)
-    Vec3 angularImpulseA = Vec3::Zero();    ///< IA^-1 (rA x n)
-    Vec3 angularImpulseB = Vec3::Zero();    ///< IB^-1 (rB x n)
+    /// normalTarget at the sweep's bias, slop and 1/h, set by the first sweep that uses them
+    /// (SweepRows::sweep): it is the same for all the sweeps of a phase, and recomputed in each
+    /// it was a tenth of a pile's normal rows.
+    Real target = 0;                      ///< (m/s)
+    Real reboundSpeed = 0;                ///< (m/s)
+    Real bounceCorrection = 0;            ///< (m)
+    Vec3 angularImpulseA = Vec3::Zero();  ///< IA^-1 (rA x n)
+    Vec3 angularImpulseB = Vec3::Zero();  ///< IB^-1 (rB x n)
     bool bounces = false;
 };
 
@@ -56,10 +62,17 @@ struct SweepManifold {
     bool angular = false;  ///< spinning or rolling rows
     bool grouped = false;  ///< normal rows solved by NormalIslands
     Vec3 normal = Vec3::UnitZ();
-    std::array<Vec3, 2> tangents{};
+    /// The friction basis t_1, t_2 by axis, [axis][k]: the sweep forms both rows' slip in two
+    /// lanes (SweepPoint::tangentAngularA), and tangents() gives them back as vectors.
+    std::array<std::array<Real, 2>, 3> tangentAxes{};
     Real friction = 0;
     /// The friction rows' target: v_t along t_1, t_2 (m/s); 0 but in the soft step.
     std::array<Real, 2> tangentTarget{};
+
+    std::array<Vec3, 2> tangents() const {
+        return {Vec3(tangentAxes[0][0], tangentAxes[1][0], tangentAxes[2][0]),
+                Vec3(tangentAxes[0][1], tangentAxes[1][1], tangentAxes[2][1])};
+    }
 };
 
 class SweepRows {
@@ -99,6 +112,10 @@ private:
     std::size_t pointCount_ = 0;
     std::vector<Eigen::Matrix<Real, 4, 4>> blocks_;  ///< normal blocks (normal_block.h)
     std::vector<std::uint32_t> grouped_;             ///< manifolds with grouped normal rows
+    /// What the points' targets were computed with (bit patterns); stale after anything that
+    /// changes a point's target inputs (add, softTargets, dropBounces, dropBounceCorrections).
+    bool targetsStale_ = true;
+    std::array<std::uint64_t, 3> targetInputs_{};  ///< bias, slop, 1/h
 };
 
 }  // namespace tumble
