@@ -135,6 +135,9 @@ int ConstraintSolver::runSweeps(std::span<SolverBody> bodies,
                                 std::span<ContactConstraint> constraints,
                                 std::span<SpringRow> springs, const SolverSettings& settings,
                                 Real inverseH, Real bias, int sweeps) {
+    // Only the contacts change the bodies between two contact sweeps: they may keep their copy.
+    const bool contactsAlone =
+        springs.empty() && joints_.empty() && segments_.empty() && !directJoints_;
     for (int sweep = 0; sweep < sweeps;) {
         // Springs first, contacts last: non-penetration matters most. The springs' rows take no
         // bias, so they are solved the same way in the biased and in the relax sweeps. Solved
@@ -151,7 +154,8 @@ int ConstraintSolver::runSweeps(std::span<SolverBody> bodies,
         springChange = std::max(springChange, solveJointRows(bodies, joints_, settings.relaxation,
                                                              jointBias_, inverseH));
         const Real contactChange =
-            std::max(contacts_.solveVelocitySweep(bodies, constraints, settings, inverseH, bias),
+            std::max(contacts_.solveVelocitySweep(bodies, constraints, settings, inverseH, bias,
+                                                  contactsAlone && sweep > 0),
                      solveSegmentContacts(bodies, segments_, inverseH, segmentPositions_ ? 0 : bias,
                                           settings.slop));
         const Real largestChange = std::max(springChange, contactChange);

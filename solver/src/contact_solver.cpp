@@ -391,9 +391,12 @@ void ContactSolver::finish(std::span<ContactConstraint> constraints) const {
 
 Real ContactSolver::solveVelocitySweep(std::span<SolverBody> bodies,
                                        std::span<ContactConstraint> constraints,
-                                       const SolverSettings& settings, Real inverseH, Real bias) {
+                                       const SolverSettings& settings, Real inverseH, Real bias,
+                                       bool resident) {
     if (wide_) {
-        Real largestChange = rows_.sweep(bodies, constraints, factors_, settings, bias, inverseH);
+        // The exact groups' solve after each sweep changes the bodies behind the rows' copy.
+        Real largestChange = rows_.sweep(bodies, constraints, factors_, settings, bias, inverseH,
+                                         false, resident && islands_.empty());
         if (!islands_.empty()) {
             largestChange =
                 std::max(largestChange, islands_.solve(bodies, constraints, settings.relaxation,

@@ -72,9 +72,11 @@ public:
     /// the exactly solved groups; returns the largest velocity change (m/s) when measuring.
     /// `soft`: the soft step's biased sweep, each touching point's answer scaled by the mass
     /// scale softTargets gave it (SweepRows::sweep's softScales, the same bits).
+    /// `resident`: the bodies' velocities are as the last sweep stored them (nothing has changed
+    /// them since), so the copy of them into the rows' own array is skipped.
     Real sweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                std::span<NormalFactor> factors, const SolverSettings& settings, Real bias,
-               Real inverseH, bool soft = false);
+               Real inverseH, bool soft = false, bool resident = false);
     /// Soft step: each point's separation (`separations`, constraint j's points from
     /// `firstPoint[j]`) as its target at the substep's inverseH, no bounce; `scales`:
     /// SoftContact::massScale.

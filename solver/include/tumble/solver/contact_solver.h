@@ -207,8 +207,11 @@ public:
     /// One PGS sweep over the contacts with the given bias factor; returns the largest velocity
     /// change an impulse made (m/s). With settings.tolerance 0 nothing reads it, and only the
     /// angular rows and the exact groups are measured.
+    /// `resident`: nothing has changed the bodies' velocities since the last sweep (the caller
+    /// solves no other rows between them), which lets the wide rows keep their copy.
     Real solveVelocitySweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
-                            const SolverSettings& settings, Real inverseH, Real bias);
+                            const SolverSettings& settings, Real inverseH, Real bias,
+                            bool resident = false);
     /// Largest complementarity residual of the contacts at the current velocities (m/s).
     Real residual(std::span<const SolverBody> bodies,
                   std::span<const ContactConstraint> constraints, const SolverSettings& settings,
