@@ -521,17 +521,25 @@ Real SpringBlockSolver::settle(std::span<SolverBody> bodies) {
             return change;
         // A thread that pushes goes slack; a slack one that would stretch takes load.
         bool changed = false;
+        // Through locals: each char store to wanted may alias the members, which the compiler
+        // would then load again for every row (most of a net's rows are deferred, ~55 each).
+        const char* const active = active_.data();
+        char* const wanted = wanted_.data();
+        SpringRow* const elements = elements_.data();
+        SpringRow* const transverse = transverse_.data();
+        const std::size_t elementCount = elementCount_;
+        const Real h = h_;
         for (std::size_t i = 0; i < n; ++i) {
-            SpringRow& r = row(i);
-            wanted_[i] = active_[i];
+            SpringRow& r = i < elementCount ? elements[i] : transverse[i - elementCount];
+            wanted[i] = active[i];
             const SolverBody& a = bodies[r.bodyA];
             const SolverBody& b = bodies[r.bodyB];
             if (r.deferred) {
                 // Slack at both levels, inactive: wanted exactly when usable and caught (below),
                 // so prepared only then.
-                if (!threadRowEndStretchExceeds(a, b, r, h_, kFlipSpeed * h_))
+                if (!threadRowEndStretchExceeds(a, b, r, h, kFlipSpeed * h))
                     continue;
-                finishSpringRow(a, b, r, h_);
+                finishSpringRow(a, b, r, h);
             }
             if (!r.tensionOnly || !usable(r))
                 continue;
@@ -547,12 +555,12 @@ Real SpringBlockSolver::settle(std::span<SolverBody> bodies) {
                 // zero above the rest length, and threads caught short of that were left out,
                 // ended stretched without a pull and had the stretch projected away
                 // (`net-energy` at omega_e h = 2 lost 74 %).
-                wanted_[i] = threadRowEndStretchExceeds(a, b, r, h_, kFlipSpeed * h_);
+                wanted[i] = threadRowEndStretchExceeds(a, b, r, h, kFlipSpeed * h);
             } else {
-                wanted_[i] = active_[i] ? pulls || r.impulse / r.mass <= kFlipSpeed
-                                        : springRowSpeed(a, b, r) + r.bias > kFlipSpeed;
+                wanted[i] = active[i] ? pulls || r.impulse / r.mass <= kFlipSpeed
+                                      : springRowSpeed(a, b, r) + r.bias > kFlipSpeed;
             }
-            changed = changed || wanted_[i] != active_[i];
+            changed = changed || wanted[i] != active[i];
         }
         for (std::size_t i = elementCount_; i < n; ++i)
             wanted_[i] = wanted_[owner_[i - elementCount_]];
