@@ -324,6 +324,7 @@ Real SolveStage::projectionErrors(const BodyStore& bodies, const SpringStore& sp
     const std::span<ProjectedGeometry> geometry(projectedGeometry_);
     const std::span<Real> errors(projectionError_);
     const std::span<const RowBodies> ends(rowBodies_);
+    const BodyMotion* const motion = bodies.motion.data();  // else reloaded every row
     Real worst = 0;
     for (std::size_t j = 0; j < count; ++j) {
         SpringRow& solved = rows[j];
@@ -334,9 +335,8 @@ Real SolveStage::projectionErrors(const BodyStore& bodies, const SpringStore& sp
             // now lie past its rest length, whichever scheme owns it. Only then is the rest of
             // its preparation read. A net's thread spans its nodes' centres (projectedSpan()).
             const Real length =
-                (ends[j].centred
-                     ? Vec3(bodies.motion[ends[j].b].center - bodies.motion[ends[j].a].center)
-                     : projectedSpan(bodies, springs, j))
+                (ends[j].centred ? Vec3(motion[ends[j].b].center - motion[ends[j].a].center)
+                                 : projectedSpan(bodies, springs, j))
                     .norm();  // as the geometry's
             if (length > 0 &&
                 length - solved.restLength <= kNegligibleStretch * solved.restLength) {

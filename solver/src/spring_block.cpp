@@ -505,10 +505,12 @@ void SpringBlockSolver::relineariseStaleThreads(std::span<SolverBody> bodies, bo
 Real SpringBlockSolver::settle(std::span<SolverBody> bodies) {
     const std::size_t n = rowCount();
     settled_ = true;
-    // Rows left out keep no warm-start impulse.
+    // Rows left out keep no warm-start impulse. The active set through a local: GCC loaded
+    // active_'s data and elementCount_ again for every row.
+    const char* const wasActive = active_.data();
     for (std::size_t i = 0; i < n; ++i) {
         SpringRow& r = row(i);
-        if (!active_[i] && r.impulse != 0) {
+        if (!wasActive[i] && r.impulse != 0) {
             applySpringImpulse(bodies[r.bodyA], bodies[r.bodyB], r, -r.impulse);
             r.impulse = 0;
         }
