@@ -199,16 +199,24 @@ SolverStats SolveStage::run(BodyStore& bodies, const ShapeStore& shapes, Contact
     brokenJoints_.clear();
     storeJointResults(joints, jointRows_, rowJoint_, context.h, brokenJoints_);
 
-    for (std::size_t j = 0; j < springRows_.size(); ++j) {
-        const SpringRow& row = springRows_[j];
+    // Through locals, and the bool stored last: the compiler otherwise loaded the vectors and
+    // the step's 1/h again after each row's store.
+    const SpringRow* const rows = springRows_.data();
+    const std::uint32_t* const springOf = rowSpring_.data();
+    SpringStepState* const states = springs.state.data();
+    const Real inverseH = context.inverseH;
+    for (std::size_t j = 0, n = springRows_.size(); j < n; ++j) {
+        const SpringRow& row = rows[j];
         // A discrete-gradient thread's tension is its new half's force (spring_row.h): the
         // step's impulse also holds last step's half, absent in a thread's first step.
-        const Real tension = row.discreteGradient
-                                 ? -2 * row.impulse * context.inverseH
-                                 : -(row.impulse + row.knownImpulse) * context.inverseH;
-        springs.state[rowSpring_[j]] = {
-            tension, row.tensionOnly && !(tension > 0),
-            row.discreteGradient ? Vec3(row.impulse * row.direction + row.turn) : Vec3::Zero()};
+        const Real tension = row.discreteGradient ? -2 * row.impulse * inverseH
+                                                  : -(row.impulse + row.knownImpulse) * inverseH;
+        const bool slack = row.tensionOnly && !(tension > 0);
+        SpringStepState& state = states[springOf[j]];
+        state.carried =
+            row.discreteGradient ? Vec3(row.impulse * row.direction + row.turn) : Vec3::Zero();
+        state.tension = tension;
+        state.slack = slack;
     }
 
     storeImpulses(contacts, constraints, anchored);
