@@ -388,20 +388,26 @@ void ContactManager::collideActive(const ShapeStore& shapes, BodyStore& bodies,
     stepLength_ = context.h;
     if (poses_.size() < shapes.records.size())
         poses_.resize(shapes.records.size());
+    // Held in locals: the stores below (a slot's flag, work_) might alias the vectors' and the
+    // context's fields for the compiler, which then reloaded them for each of the ~11,000 pairs.
+    SlotState* const states = state_.data();
+    const ShapeRecord* const records = shapes.records.data();
+    const BodyMotion* const motion = bodies.motion.data();
+    const Real h = context.h;
+    const Real baseMargin = contactMargin;
     for (std::size_t i = 0; i < active_.size(); ++i) {
         if (i + kAhead < active_.size())
-            __builtin_prefetch(&state_[active_[i + kAhead]]);
+            __builtin_prefetch(&states[active_[i + kAhead]]);
         const std::uint32_t slot = active_[i];
-        SlotState& state = state_[slot];
+        SlotState& state = states[slot];
         if (state.part != 0)
             continue;  // collided with its pair's own record
-        const ShapeRecord& shapeA = shapes.records[state.shapeA];
-        const ShapeRecord& shapeB = shapes.records[state.shapeB];
+        const ShapeRecord& shapeA = records[state.shapeA];
+        const ShapeRecord& shapeB = records[state.shapeB];
         const std::uint32_t indexA = bodies.checkedIndexOf(shapeA.body);  // see shapePose
         const std::uint32_t indexB = bodies.checkedIndexOf(shapeB.body);
-        const Vec3 relativeVelocity =
-            bodies.motion[indexB].linearVelocity - bodies.motion[indexA].linearVelocity;
-        const Real margin = contactMargin + context.h * relativeVelocity.norm();
+        const Vec3 relativeVelocity = motion[indexB].linearVelocity - motion[indexA].linearVelocity;
+        const Real margin = baseMargin + h * relativeVelocity.norm();
         // Shapes whose tight boxes (at the current poses) lie more than the margin apart are
         // farther apart than that, so the manifold is empty: no GJK. In a settled pile most
         // broadphase pairs are such neighbours of neighbours (2,000 of the soak's bodies: 48,070

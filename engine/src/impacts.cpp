@@ -49,15 +49,17 @@ void ImpactTracker::update(const ContactManager& contacts, const BodyStore& bodi
             const std::uint32_t b = bodies.checkedIndexOf(contact.bodyB);
             const Vec3& normal = contact.manifold.normal;
             Real approach = -std::numeric_limits<Real>::infinity();
-            Vec3 weighted = Vec3::Zero();
             for (int i = 0; i < contact.manifold.pointCount; ++i) {
                 const Vec3& p = contact.manifold.points[i].position;
                 approach = std::max<Real>(approach, -normal.dot(startVelocityAt(bodies, b, p) -
                                                                 startVelocityAt(bodies, a, p)));
-                weighted += contact.normalImpulse[i] * p;
             }
             if (approach < threshold)
                 continue;
+            // The impact's point only for the few contacts that open one.
+            Vec3 weighted = Vec3::Zero();
+            for (int i = 0; i < contact.manifold.pointCount; ++i)
+                weighted += contact.normalImpulse[i] * contact.manifold.points[i].position;
             Open& entry = bySlot_[slot];
             entry.open = true;
             entry.event = {contact.shapeA,     contact.shapeB, contact.bodyA, contact.bodyB,

@@ -14,7 +14,7 @@ constexpr Real kNewtonTolerance = 1e-9;
 
 }  // namespace
 
-Vec3 gyroscopicMidpoint(const Mat3& inertia, const Vec3& w0, Real h) {
+Vec3 gyroscopicMidpoint(const Mat3& inertia, const Mat3& inverseInertia, const Vec3& w0, Real h) {
     const Vec3 momentum0 = inertia * w0;
     const Vec3 gyroscopic0 = w0.cross(momentum0);
     const Real scale = w0.norm();
@@ -22,7 +22,7 @@ Vec3 gyroscopicMidpoint(const Mat3& inertia, const Vec3& w0, Real h) {
     if (gyroscopic0.norm() <= kNewtonTolerance * scale * momentum0.norm())
         return w0;
     // Explicit half step as the first guess: Newton then needs one or two corrections.
-    Vec3 x = w0 - 0.5 * h * inertia.inverse() * gyroscopic0;
+    Vec3 x = w0 - 0.5 * h * inverseInertia * gyroscopic0;
     for (int iteration = 0; iteration < kMaxNewtonIterations; ++iteration) {
         const Vec3 momentum = inertia * x;
         const Vec3 residual = 2 * inertia * (x - w0) + h * x.cross(momentum);
@@ -63,7 +63,7 @@ void integrateVelocity(BodyStore& bodies, std::uint32_t index, const StepContext
     const Mat3 rotation = m.orientation.toRotationMatrix();
     Vec3 bodyOmega = rotation.transpose() * m.angularVelocity;
     bodyOmega += h * (inertia.inverseInertiaLocal * (rotation.transpose() * forces.torque));
-    bodyOmega = gyroscopicMidpoint(inertia.inertiaLocal, bodyOmega, h);
+    bodyOmega = gyroscopicMidpoint(inertia.inertiaLocal, inertia.inverseInertiaLocal, bodyOmega, h);
 
     // Implicit damping dv/dt = -c v: unconditionally stable, never reverses the velocity.
     m.linearVelocity /= 1 + h * info.linearDamping;

@@ -41,6 +41,7 @@ void displaceBodies(BodyStore& bodies, std::span<const PseudoVelocity> velocitie
 /// intermediate axis, and plain implicit Euler (Bullet's choice) bleeds energy away.
 /// Solved for wm by Newton's method on f(x) = 2 I (x - w0) + h x x (I x), whose Jacobian is
 /// 2 I + h (skew(x) I - skew(I x)); it converges in 2-4 iterations for h |w| < 1.
-Vec3 gyroscopicMidpoint(const Mat3& inertia, const Vec3& w0, Real h);
+/// `inverseInertia` is inertia.inverse() (the body's stored one: not recomputed every step).
+Vec3 gyroscopicMidpoint(const Mat3& inertia, const Mat3& inverseInertia, const Vec3& w0, Real h);
 
 }  // namespace tumble

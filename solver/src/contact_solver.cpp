@@ -242,7 +242,8 @@ TUMBLE_LANE_KERNEL void prepareManifold(const SolverBody& a, const SolverBody& b
                                         ContactConstraint& c, Real h,
                                         const SolverSettings& settings, bool split, bool support,
                                         Real& deepestPenetration, bool& bounceCorrections) {
-    c.tangents = frictionBasis(c.normal);
+    if (!c.tangentsSet)
+        c.tangents = frictionBasis(c.normal);
     for (int i = 0; i < c.pointCount; ++i) {
         ContactConstraintPoint& p = c.points[i];
         deepestPenetration = std::max(deepestPenetration, -p.separation);

@@ -145,6 +145,9 @@ struct ContactConstraint {
     /// pushed out afterwards on the pseudo-velocities alone (sprung_push_out.h). For the
     /// contacts of bodies that springs end on.
     bool pushOut = true;
+    /// True when the builder already set `tangents` to frictionBasis(normal) (it projects the
+    /// cached friction onto them): prepare() keeps them instead of taking the basis again.
+    bool tangentsSet = false;
 
     // Filled by prepare().
     /// Group whose normal rows NormalIslands solves together, or NormalIslands::kNone: the
