@@ -398,11 +398,18 @@ bool deferCentred(const SolverBody& a, const SolverBody& b, SpringRow& row, Real
     return true;
 }
 
-// prepareRow() past deferCentred(), out of line: that deferral, most of a net in flight's rows,
-// then takes no call.
-[[gnu::noinline]] void prepareJacobianRow(const SolverBody& a, const SolverBody& b, SpringRow& row,
-                                          Real h, bool mayDefer, bool warmStart,
-                                          bool undampedThread) {
+// prepareSpringRow(); mayDefer: a resolved thread slack at both levels and without a warm start
+// is left `deferred` after its levels (spring_row.h), its Jacobians those of its start line.
+void prepareRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h, bool mayDefer,
+                bool warmStart) {
+    row.knownImpulse = 0;
+    row.deferred = false;
+    // Only threads past Fox-Goodwin's range, and not the stiffest, take the discrete gradient;
+    // undamped ones within it the three-level scheme's energy-conserving form.
+    const bool undampedThread =
+        row.discreteGradient && row.tensionOnly && row.damping == 0 && row.spectralRadius >= 1;
+    if (mayDefer && undampedThread && deferCentred(a, b, row, h, warmStart))
+        return;
     row.angularA = row.rA.cross(row.direction);
     row.angularB = row.rB.cross(row.direction);
     row.angularImpulseA = a.inverseInertia * row.angularA;
@@ -468,21 +475,6 @@ bool deferCentred(const SolverBody& a, const SolverBody& b, SpringRow& row, Real
     }
     const Real lastShare = h * row.stiffness * last - row.damping * (1 - rateNext);
     row.bias = (row.stiffness * stretch - lastShare * startRate) / resistance;
-}
-
-// prepareSpringRow(); mayDefer: a resolved thread slack at both levels and without a warm start
-// is left `deferred` after its levels (spring_row.h), its Jacobians those of its start line.
-inline void prepareRow(const SolverBody& a, const SolverBody& b, SpringRow& row, Real h,
-                       bool mayDefer, bool warmStart) {
-    row.knownImpulse = 0;
-    row.deferred = false;
-    // Only threads past Fox-Goodwin's range, and not the stiffest, take the discrete gradient;
-    // undamped ones within it the three-level scheme's energy-conserving form.
-    const bool undampedThread =
-        row.discreteGradient && row.tensionOnly && row.damping == 0 && row.spectralRadius >= 1;
-    if (mayDefer && undampedThread && deferCentred(a, b, row, h, warmStart))
-        return;
-    prepareJacobianRow(a, b, row, h, mayDefer, warmStart, undampedThread);
 }
 
 // Whether a zero impulse applied to the body leaves every bit of its velocity: v - (+-0) is v
