@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <random>
 
 #include "tumble/world.h"
@@ -55,27 +56,34 @@ void applySpring(World& world, BodyId body, const Oscillator& o) {
     world.applyForceToCenter(body, -o.mass * o.omega * o.omega * world.position(body));
 }
 
-// v' = v - h w^2 x, x' = x + h v': the default step's map, whatever the substeps.
-TEST(SoftStepForces, ASpringStepsByTheDefaultStepsSemiImplicitEuler) {
-    std::mt19937 rng(2127);
+// `draws` random oscillators at each substep count, each in its own soft world.
+void forEachOscillator(unsigned seed, int draws,
+                       const std::function<void(int, const Oscillator&, World&, BodyId)>& check) {
+    std::mt19937 rng(seed);
     for (const int n : kSubstepCounts) {
-        for (int draw = 0; draw < 20; ++draw) {
+        for (int draw = 0; draw < draws; ++draw) {
             const Oscillator o = randomOscillator(rng);
             World world(softWorld(o.h, n));
-            const BodyId body = addPointMass(world, o);
-            applySpring(world, body, o);
-            ASSERT_TRUE(world.step().ok());
-            const Real wh2 = o.omega * o.omega * o.h * o.h;
-            const Vec3 v = o.v0 - o.h * o.omega * o.omega * o.x0;
-            const Vec3 x = o.x0 + o.h * v;
-            const Real xScale = o.x0.norm() + o.h * o.v0.norm() + wh2 * o.x0.norm();
-            const Real vScale = o.v0.norm() + o.h * o.omega * o.omega * o.x0.norm();
-            EXPECT_LE((world.position(body) - x).norm(), 1e-12 * xScale)
-                << "n " << n << " omega h " << o.omega * o.h;
-            EXPECT_LE((world.linearVelocity(body) - v).norm(), 1e-12 * vScale)
-                << "n " << n << " omega h " << o.omega * o.h;
+            check(n, o, world, addPointMass(world, o));
         }
     }
+}
+
+// v' = v - h w^2 x, x' = x + h v': the default step's map, whatever the substeps.
+TEST(SoftStepForces, ASpringStepsByTheDefaultStepsSemiImplicitEuler) {
+    forEachOscillator(2127, 20, [](int n, const Oscillator& o, World& world, BodyId body) {
+        applySpring(world, body, o);
+        ASSERT_TRUE(world.step().ok());
+        const Real wh2 = o.omega * o.omega * o.h * o.h;
+        const Vec3 v = o.v0 - o.h * o.omega * o.omega * o.x0;
+        const Vec3 x = o.x0 + o.h * v;
+        const Real xScale = o.x0.norm() + o.h * o.v0.norm() + wh2 * o.x0.norm();
+        const Real vScale = o.v0.norm() + o.h * o.omega * o.omega * o.x0.norm();
+        EXPECT_LE((world.position(body) - x).norm(), 1e-12 * xScale)
+            << "n " << n << " omega h " << o.omega * o.h;
+        EXPECT_LE((world.linearVelocity(body) - v).norm(), 1e-12 * vScale)
+            << "n " << n << " omega h " << o.omega * o.h;
+    });
 }
 
 // Symplectic Euler keeps Q = v^2 + w^2 x^2 - h w^2 x.v exactly (per unit of m / 2), so the
@@ -84,36 +92,30 @@ TEST(SoftStepForces, ASpringStepsByTheDefaultStepsSemiImplicitEuler) {
 // (w h)^2: Q grew by 3.3e-5 a step at w h = 0.01, n = 3. Tolerances set before measuring: Q to
 // 1e-11 relative over 1000 steps (rounding, a few 1e-16 a step), the band to 1e-12.
 TEST(SoftStepForces, ASpringKeepsSymplecticEulersShadowEnergy) {
-    std::mt19937 rng(2128);
-    for (const int n : kSubstepCounts) {
-        for (int draw = 0; draw < 5; ++draw) {
-            const Oscillator o = randomOscillator(rng);
-            World world(softWorld(o.h, n));
-            const BodyId body = addPointMass(world, o);
-            const Real w2 = o.omega * o.omega;
-            const auto shadow = [&](const Vec3& x, const Vec3& v) {
-                return v.squaredNorm() + w2 * x.squaredNorm() - o.h * w2 * x.dot(v);
-            };
-            const Real q0 = shadow(o.x0, o.v0);
-            const Real wh = o.omega * o.h;
-            Real worstShadow = 0;
-            Real lowest = 1e300;
-            Real highest = 0;
-            for (int step = 0; step < 1000; ++step) {
-                applySpring(world, body, o);
-                ASSERT_TRUE(world.step().ok());
-                const Vec3 x = world.position(body);
-                const Vec3 v = world.linearVelocity(body);
-                worstShadow = std::max(worstShadow, std::abs(shadow(x, v) / q0 - 1));
-                const Real energy = v.squaredNorm() + w2 * x.squaredNorm();
-                lowest = std::min(lowest, energy);
-                highest = std::max(highest, energy);
-            }
-            EXPECT_LE(worstShadow, 1e-11) << "n " << n << " omega h " << wh;
-            EXPECT_GE(lowest, q0 / (1 + wh / 2) * (1 - 1e-12)) << "n " << n << " omega h " << wh;
-            EXPECT_LE(highest, q0 / (1 - wh / 2) * (1 + 1e-12)) << "n " << n << " omega h " << wh;
+    forEachOscillator(2128, 5, [](int n, const Oscillator& o, World& world, BodyId body) {
+        const Real w2 = o.omega * o.omega;
+        const auto shadow = [&](const Vec3& x, const Vec3& v) {
+            return v.squaredNorm() + w2 * x.squaredNorm() - o.h * w2 * x.dot(v);
+        };
+        const Real q0 = shadow(o.x0, o.v0);
+        const Real wh = o.omega * o.h;
+        Real worstShadow = 0;
+        Real lowest = 1e300;
+        Real highest = 0;
+        for (int step = 0; step < 1000; ++step) {
+            applySpring(world, body, o);
+            ASSERT_TRUE(world.step().ok());
+            const Vec3 x = world.position(body);
+            const Vec3 v = world.linearVelocity(body);
+            worstShadow = std::max(worstShadow, std::abs(shadow(x, v) / q0 - 1));
+            const Real energy = v.squaredNorm() + w2 * x.squaredNorm();
+            lowest = std::min(lowest, energy);
+            highest = std::max(highest, energy);
         }
-    }
+        EXPECT_LE(worstShadow, 1e-11) << "n " << n << " omega h " << wh;
+        EXPECT_GE(lowest, q0 / (1 + wh / 2) * (1 - 1e-12)) << "n " << n << " omega h " << wh;
+        EXPECT_LE(highest, q0 / (1 - wh / 2) * (1 + 1e-12)) << "n " << n << " omega h " << wh;
+    });
 }
 
 // A constant torque about a principal axis from rest: w_N = N h tau / I and, as in the default
