@@ -35,22 +35,24 @@ Vec3 gyroscopicMidpoint(const Mat3& inertia, const Mat3& inverseInertia, const V
     return 2 * x - w0;
 }
 
-void integrateVelocities(BodyStore& bodies, const StepContext& context) {
+void integrateVelocities(BodyStore& bodies, const StepContext& context, Real forceSteps) {
     for (const std::uint32_t index : bodies.awake) {
         if (bodies.info[index].type == BodyType::Dynamic)
-            integrateVelocity(bodies, index, context);
+            integrateVelocity(bodies, index, context, forceSteps);
     }
 }
 
-void integrateVelocity(BodyStore& bodies, std::uint32_t index, const StepContext& context) {
+void integrateVelocity(BodyStore& bodies, std::uint32_t index, const StepContext& context,
+                       Real forceSteps) {
     const Real h = context.h;
     const BodyInfo& info = bodies.info[index];
     BodyMotion& m = bodies.motion[index];
     const BodyInertia& inertia = bodies.inertia[index];
     const BodyForces& forces = bodies.forces[index];
 
-    m.linearVelocity +=
-        h * (info.gravityScale * context.gravity + inertia.inverseMass * forces.force);
+    // forceSteps = 1 multiplies exactly: the default step's bits.
+    m.linearVelocity += h * (info.gravityScale * context.gravity +
+                             forceSteps * (inertia.inverseMass * forces.force));
     if (info.fixedRotation) {
         // Zero inverse inertia (every lumped node): the angular velocity stays zero, and the
         // rotation, gyroscopic test and damping below would only carry zeros (the same bits for
@@ -62,7 +64,8 @@ void integrateVelocity(BodyStore& bodies, std::uint32_t index, const StepContext
     // Angular part in body axes, where the inertia is constant.
     const Mat3 rotation = m.orientation.toRotationMatrix();
     Vec3 bodyOmega = rotation.transpose() * m.angularVelocity;
-    bodyOmega += h * (inertia.inverseInertiaLocal * (rotation.transpose() * forces.torque));
+    bodyOmega +=
+        (forceSteps * h) * (inertia.inverseInertiaLocal * (rotation.transpose() * forces.torque));
     bodyOmega = gyroscopicMidpoint(inertia.inertiaLocal, inertia.inverseInertiaLocal, bodyOmega, h);
 
     // Implicit damping dv/dt = -c v: unconditionally stable, never reverses the velocity.

@@ -14,10 +14,13 @@ namespace tumble {
 
 /// Gravity, applied forces and torques, the gyroscopic term and damping -> velocities of the
 /// awake dynamic bodies. Kinematic bodies keep their velocities; sleeping and static bodies are
-/// not visited.
-void integrateVelocities(BodyStore& bodies, const StepContext& context);
+/// not visited. The applied forces and torques (BodyForces) act for `forceSteps` x h: 1 in the
+/// default step; the soft step's first substep takes the step's whole impulse (n) and its other
+/// substeps none (0), soft_step.cpp.
+void integrateVelocities(BodyStore& bodies, const StepContext& context, Real forceSteps = 1);
 /// The same for one dynamic body (one woken in the middle of a step catches up on its forces).
-void integrateVelocity(BodyStore& bodies, std::uint32_t index, const StepContext& context);
+void integrateVelocity(BodyStore& bodies, std::uint32_t index, const StepContext& context,
+                       Real forceSteps = 1);
 
 /// Moves every awake body with its velocity. Orientation: q(n+1) = exp(h w / 2) q(n), the
 /// exact rotation for a constant angular velocity over the step, then renormalised against

@@ -58,10 +58,15 @@ SolverStats SolveStage::runSoft(BodyStore& bodies, const ShapeStore& shapes,
         stats.deepestPenetration = solver.prepare(solverBodies_, constraints, context.h, rows);
         solver.beginSoft(constraints, softJumps_, softStartBodies_);
     });
-    softProfile_.velocity = timed([&] { softSubsteps(bodies, constraints, context, rows); });
+    // Into the stages as the default step's: velocity (integration, warm start, biased sweep,
+    // bounces), relax (the sweep without bias), positions (the substeps' positions, the bounces'
+    // lift, the anchor pass). No residual is measured (0).
+    softSubsteps(bodies, constraints, context, rows);
     stats.iterations = n;
-    if (anchored)
-        holdSoftAnchors(bodies, constraints, context, lengths);
+    softProfile_.positions += timed([&] {
+        if (anchored)
+            holdSoftAnchors(bodies, constraints, context, lengths);
+    });
     storeImpulses(contacts, constraints, anchored);
     return stats;
 }
@@ -162,49 +167,93 @@ void SolveStage::softSubsteps(BodyStore& bodies, std::span<ContactConstraint> co
         softStart_[k] = bodies.motion[bodies.awake[k]].center;
     moved_.assign(solverBodies_.size(), BodyDisplacement{});
     for (int k = 0; k < n; ++k) {
-        storeVelocities(bodies);
         // The bounces' impacts need the normal acceleration: the first substep's change.
         const bool impacts = k == 0 && solver.softBounces();
-        if (impacts)
-            softChange_.assign(solverBodies_.size(), SolverBody{});
-        for (std::size_t b = 0; impacts && b < bodies.awake.size(); ++b) {
-            const BodyMotion& m = bodies.motion[bodies.awake[b]];
-            softChange_[1 + b].linearVelocity = -m.linearVelocity;
-            softChange_[1 + b].angularVelocity = -m.angularVelocity;
-        }
-        integrateVelocities(bodies, sub);
-        for (std::size_t b = 0; b < bodies.awake.size(); ++b) {
-            const BodyMotion& m = bodies.motion[bodies.awake[b]];
-            solverBodies_[1 + b].linearVelocity = m.linearVelocity;
-            solverBodies_[1 + b].angularVelocity = m.angularVelocity;
-            if (impacts) {
-                softChange_[1 + b].linearVelocity += m.linearVelocity;
-                softChange_[1 + b].angularVelocity += m.angularVelocity;
-            }
-        }
-        if (impacts)
-            solver.softImpacts(softChange_, constraints, context.h, sub.h,
-                               settings.restitutionThreshold);
-        if (k > 0)
-            solver.softWarmStart(solverBodies_, constraints);
         // The kinematic changes' share the bodies still lag by after this substep.
         const Real remaining = Real(n - 1 - k) / n;
-        solver.softTargets(constraints, solverBodies_, moved_, soft, sub.inverseH, remaining, true,
-                           false);
-        solver.softSweep(solverBodies_, constraints, settings, sub.inverseH, &soft);
-        storeVelocities(bodies);
-        integratePositions(bodies, {}, sub);
-        measureDisplacements(bodies, sub.h);
-        solver.softTargets(constraints, solverBodies_, moved_, soft, sub.inverseH, remaining, false,
-                           k == n - 1);
-        solver.softSweep(solverBodies_, constraints, settings, sub.inverseH, nullptr);
-        solver.endSoftSubstep(constraints);
+        softProfile_.velocity += timed([&] {
+            storeVelocities(bodies);
+            if (impacts)
+                softChange_.assign(solverBodies_.size(), SolverBody{});
+            for (std::size_t b = 0; impacts && b < bodies.awake.size(); ++b) {
+                const BodyMotion& m = bodies.motion[bodies.awake[b]];
+                softChange_[1 + b].linearVelocity = -m.linearVelocity;
+                softChange_[1 + b].angularVelocity = -m.angularVelocity;
+            }
+            // The applied forces and torques (the user's, drag's: summed once a step, at the
+            // step's start, unlike gravity, a field) give the step's whole impulse h F in the first
+            // substep and none after. Spread at h / n over substeps that move the body, a force
+            // held from the start pose moved it by h^2 F (n + 1) / (2 n m): a spring F = -m w^2 x
+            // got x' = x + h v - (n + 1) / (2n) (w h)^2 x, v' = v - h w^2 x, det 1 + (n - 1) / (2n)
+            // (w h)^2 > 1, and gained energy at every w h (validate's oscillator: amplitude
+            // error 2.4 at w h = 0.01, n = 3). First: v_1 = v + h F / m, kept by the n - 1 others,
+            // so x' = x + h v + h^2 F / m, v' = v + h F / m, the default step's semi-implicit Euler
+            // (det 1: it keeps v^2 + w^2 x^2 - h w^2 x v). Torques alike, the impulse at the
+            // start's orientation as in the default step, then the substeps' torque-free midpoint
+            // rule (it keeps w'Iw and |Iw|): a spin about a principal axis turns h w' a step.
+            // Damping stays per substep: det (1 + c h / n)^-n < 1, still dissipative.
+            integrateVelocities(bodies, sub, k == 0 ? Real(n) : Real(0));
+            for (std::size_t b = 0; b < bodies.awake.size(); ++b) {
+                const BodyMotion& m = bodies.motion[bodies.awake[b]];
+                solverBodies_[1 + b].linearVelocity = m.linearVelocity;
+                solverBodies_[1 + b].angularVelocity = m.angularVelocity;
+                if (impacts) {
+                    softChange_[1 + b].linearVelocity += m.linearVelocity;
+                    softChange_[1 + b].angularVelocity += m.angularVelocity;
+                }
+            }
+            if (impacts) {
+                meanForcesChange(bodies, context.h - sub.h);
+                solver.softImpacts(softChange_, constraints, context.h, sub.h,
+                                   settings.restitutionThreshold);
+            }
+            if (k > 0)
+                solver.softWarmStart(solverBodies_, constraints);
+            solver.softTargets(constraints, solverBodies_, moved_, soft, sub.inverseH, remaining,
+                               true, false);
+            solver.softSweep(solverBodies_, constraints, settings, sub.inverseH, &soft);
+            storeVelocities(bodies);
+        });
+        softProfile_.positions += timed([&] {
+            integratePositions(bodies, {}, sub);
+            measureDisplacements(bodies, sub.h);
+        });
+        softProfile_.relax += timed([&] {
+            solver.softTargets(constraints, solverBodies_, moved_, soft, sub.inverseH, remaining,
+                               false, k == n - 1);
+            solver.softSweep(solverBodies_, constraints, settings, sub.inverseH, nullptr);
+            solver.endSoftSubstep(constraints);
+        });
     }
-    softLift_.resize(solverBodies_.size());
-    solver.endSoft(solverBodies_, constraints, moved_, softLift_, soft.slop, sub.inverseH);
-    storeVelocities(bodies);
-    if (solver.softBounces())
-        displaceBodies(bodies, std::span<const PseudoVelocity>(softLift_).subspan(1), 1);
+    softProfile_.velocity += timed([&] {
+        softLift_.resize(solverBodies_.size());
+        solver.endSoft(solverBodies_, constraints, moved_, softLift_, soft.slop, sub.inverseH);
+        storeVelocities(bodies);
+    });
+    softProfile_.positions += timed([&] {
+        if (solver.softBounces())
+            displaceBodies(bodies, std::span<const PseudoVelocity>(softLift_).subspan(1), 1);
+    });
+}
+
+// The bounces predict the impact from a constant acceleration over the step, read from the
+// first substep's change: the forces' share of it is a substep's, h F / (n m), not the whole
+// impulse the substep took (read as n F / m). Exact without damping and the gyroscopic term,
+// which act on the first substep's velocity after the impulse.
+void SolveStage::meanForcesChange(const BodyStore& bodies, Real beyond) {
+    for (std::size_t b = 0; b < bodies.awake.size(); ++b) {
+        const std::uint32_t i = bodies.awake[b];
+        if (bodies.info[i].type != BodyType::Dynamic)
+            continue;
+        const BodyForces& f = bodies.forces[i];
+        const BodyInertia& inertia = bodies.inertia[i];
+        softChange_[1 + b].linearVelocity -= beyond * (inertia.inverseMass * f.force);
+        if (bodies.info[i].fixedRotation)
+            continue;
+        const Mat3 rotation = bodies.motion[i].orientation.toRotationMatrix();
+        softChange_[1 + b].angularVelocity -=
+            beyond * (rotation * (inertia.inverseInertiaLocal * (rotation.transpose() * f.torque)));
+    }
 }
 
 void SolveStage::measureDisplacements(const BodyStore& bodies, Real h) {

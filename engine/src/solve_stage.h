@@ -98,6 +98,9 @@ private:
     void addSoftSlips(std::span<const ContactConstraint> constraints);
     void holdSoftAnchors(BodyStore& bodies, std::span<const ContactConstraint> constraints,
                          const StepContext& context, const AnchorLengths& lengths);
+    /// Takes from softChange_ the applied forces' impulse beyond a substep's share
+    /// (`beyond` = h - h / n of it), which the first substep gave.
+    void meanForcesChange(const BodyStore& bodies, Real beyond);
     /// Every awake body's displacement since the step began (into moved_), after a substep
     /// of length h.
     void measureDisplacements(const BodyStore& bodies, Real h);

@@ -7,6 +7,7 @@
 
 #include "refusal.h"
 #include "testkit/same_ids.h"
+#include "testkit/scenes.h"
 #include "tumble/checkpoint.h"
 #include "tumble/world.h"
 
@@ -26,10 +27,13 @@ MassProperties boxMass(Real mass) {
 }
 
 // An off-centre force, a torque and an off-centre impulse: the linear motion is exactly that of
-// a point mass (F / m, closed form under semi-implicit Euler) and the body never turns.
-TEST(FixedRotation, OffCentreLoadsTranslateWithoutTurning) {
+// a point mass (F / m, closed form under semi-implicit Euler) and the body never turns. The soft
+// step too: its first substep takes the applied forces' whole impulse (soft_step.cpp).
+void expectOffCentreLoadsTranslateWithoutTurning(const testkit::StepChoice& step) {
     const Real h = 1.0 / 60.0;
-    World world(WorldDef{.gravity = Vec3::Zero(), .timeStep = h});
+    WorldDef def{.gravity = Vec3::Zero(), .timeStep = h};
+    testkit::applyStep(def.solver, step);
+    World world(def);
     const Quat tilt(Eigen::AngleAxis<Real>(0.4, Vec3(1, 2, 3).normalized()));
     const BodyId body =
         world.createBody(BodyDef{.orientation = tilt, .mass = boxMass(2), .fixedRotation = true});
@@ -49,6 +53,20 @@ TEST(FixedRotation, OffCentreLoadsTranslateWithoutTurning) {
     const Vec3 position =
         Vec3(0, 2, 0) * steps * h + force / 2 * (h * h * steps * (steps + 1) / 2.0);
     EXPECT_TRUE(world.position(body).isApprox(position, 1e-12));
+}
+
+TEST(FixedRotation, OffCentreLoadsTranslateWithoutTurning) {
+    expectOffCentreLoadsTranslateWithoutTurning({});
+}
+
+class SoftStepFixedRotation : public testing::TestWithParam<testkit::StepChoice> {};
+
+INSTANTIATE_TEST_SUITE_P(Steps, SoftStepFixedRotation,
+                         testing::Values(testkit::kStepChoices[1], testkit::kStepChoices[2]),
+                         [](const auto& choice) { return testkit::stepName(choice.param); });
+
+TEST_P(SoftStepFixedRotation, OffCentreLoadsTranslateWithoutTurning) {
+    expectOffCentreLoadsTranslateWithoutTurning(GetParam());
 }
 
 struct Slide {

@@ -229,6 +229,22 @@ TEST(SoftStep, ColumnsFootSinksByTheSpringsSagAtTheCap) {
     EXPECT_EQ(checked, kCount);
 }
 
+// The soft step's stages (soft_step.cpp): the substeps' velocities, sweeps without bias and
+// positions timed into velocity, relax and positions; it measures no residual.
+TEST(SoftStep, ProfileStagesArePartsOfTheStep) {
+    World world(softWorld());
+    testkit::addGround(world);
+    testkit::addBox(world, Vec3(0, 0, 0.5));
+    for (int i = 0; i < 10; ++i)
+        ASSERT_TRUE(world.step().ok());
+    const Profile& p = world.profile();
+    const SolverProfile& s = p.solveStages;
+    for (const double t : {s.prepare, s.velocity, s.relax, s.positions})
+        EXPECT_GT(t, 0);
+    EXPECT_EQ(s.residual, 0);
+    EXPECT_LE(s.prepare + s.velocity + s.relax + s.positions, p.solve);
+}
+
 TEST(SoftStep, RefusesBadSettings) {
     World world(softWorld());
     SolverSettings bad = world.settings().solver;

@@ -20,6 +20,7 @@
 
 #include "../case.h"
 #include "fig45.h"
+#include "scenes.h"
 #include "tumble/tumble.h"
 
 namespace tumble::validation {
@@ -27,7 +28,9 @@ namespace {
 
 fig45::Oscillation simulate(double omegaH) {
     const double h = omegaH;  // omega = 1
-    World world(WorldDef{.gravity = Vec3::Zero(), .timeStep = h});
+    WorldDef worldDef{.gravity = Vec3::Zero(), .timeStep = h};
+    testkit::applyForcedSoftStep(worldDef.solver);  // tumble-validate --soft-step
+    World world(worldDef);
     BodyDef def;
     def.position = Vec3(1, 0, 0);
     const BodyId body = world.createBody(def);

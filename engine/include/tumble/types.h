@@ -76,7 +76,10 @@ struct Profile {
     double bounds = 0;    ///< tight bounds at the new poses; proxies moved in the broadphase
     double sleep = 0;     ///< sleep timers, union-find of islands, islands falling asleep
     double total = 0;
-    /// The solve's own stages (part of `solve`), summed over the substeps.
+    /// The solve's own stages (part of `solve`), summed over the substeps. Under the soft step
+    /// (SolverSettings::softSubsteps) the solve integrates too: velocity holds its substeps'
+    /// velocities, warm starts and biased sweeps, relax their sweeps without bias, positions
+    /// their positions and the anchor pass; it measures no residual (0).
     SolverProfile solveStages;
 };
 
