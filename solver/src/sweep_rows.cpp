@@ -5,6 +5,7 @@
 
 #include "contact_kernels.h"
 #include "normal_block.h"
+#include "slide_patch.h"
 #include "tumble/solver/contact_solver.h"
 
 namespace tumble {
@@ -109,6 +110,45 @@ Real solveFriction(SweepBody& a, SweepBody& b, const SweepManifold& m, SweepPoin
                                   : solveFriction<false, false>(a, b, m, points, c, omega);
 }
 
+// The soft step's patch of a manifold of several points (slide_patch.h), on the sweep's copies:
+// `solve` (slidePatch or splitPatch) on them, kept when it returns true.
+template <class Solve>
+bool onPatch(SweepBody& a, SweepBody& b, const SolverBody& bodyA, const SolverBody& bodyB,
+             const SweepManifold& m, SweepPoint* points, Solve&& solve) {
+    std::array<PatchPoint, 4> patch;
+    for (int i = 0; i < m.pointCount; ++i) {
+        const SweepPoint& p = points[i];
+        PatchPoint& q = patch[i];
+        q.normalImpulse = p.normalImpulse;
+        q.tangentImpulse = p.tangentImpulse;
+        for (int k = 0; k < 2; ++k) {
+            q.angularA[k] =
+                Vec3(p.tangentAngularA[0][k], p.tangentAngularA[1][k], p.tangentAngularA[2][k]);
+            q.angularB[k] =
+                Vec3(p.tangentAngularB[0][k], p.tangentAngularB[1][k], p.tangentAngularB[2][k]);
+            q.impulseA[k] = p.tangentImpulseA[k];
+            q.impulseB[k] = p.tangentImpulseB[k];
+        }
+    }
+    PatchBodies bodies{a.linearVelocity,
+                       a.angularVelocity,
+                       b.linearVelocity,
+                       b.angularVelocity,
+                       a.inverseMass,
+                       b.inverseMass,
+                       m.normal.dot(bodyA.inverseInertia * m.normal),
+                       m.normal.dot(bodyB.inverseInertia * m.normal)};
+    if (!solve(bodies, std::span<PatchPoint>(patch.data(), m.pointCount)))
+        return false;
+    a.linearVelocity = bodies.linearA;
+    a.angularVelocity = bodies.angularA;
+    b.linearVelocity = bodies.linearB;
+    b.angularVelocity = bodies.angularB;
+    for (int i = 0; i < m.pointCount; ++i)
+        points[i].tangentImpulse = patch[i].tangentImpulse;
+    return true;
+}
+
 }  // namespace
 
 void SweepRows::clear() {
@@ -170,7 +210,7 @@ void SweepRows::add(const ContactConstraint& c, std::uint32_t index,
 
 Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                       std::span<NormalFactor> factors, const SolverSettings& settings,
-                      Real inverseH, Real bias, const Real* softScales) {
+                      Real inverseH, Real bias, const Real* softScales, bool patches) {
     Real largestChange = 0;
     // The targets are the same in every sweep of a phase (biased, relax): the first computes
     // them. Compared as bits, so a -0 bias or a NaN is not taken for another value.
@@ -193,7 +233,15 @@ Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint>
         // Friction first, with the normal impulses of the last sweep: non-penetration, solved
         // last, matters more. The soft step's biased sweep leaves the friction of exactly
         // solved groups to its relax sweep (ContactSolver::softSweep says why).
+        bool slid = false;
         if (m.friction > 0 && !(m.grouped && softScales != nullptr)) {
+            if (patches && m.pointCount > 1 && settings.friction == FrictionModel::Coupled) {
+                slid = onPatch(a, b, bodyA, bodyB, m, points,
+                               [&](PatchBodies& on, std::span<PatchPoint> patch) {
+                                   return slidePatch(on, m.normal, m.tangents(), m.tangentTarget,
+                                                     m.friction, settings.relaxation, patch);
+                               });
+            }
             largestChange = std::max(
                 largestChange, solveFriction(a, b, m, points, constraints[m.constraint], settings));
         }
@@ -217,6 +265,13 @@ Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint>
                                         : softScales + (m.bodyA == 0 || m.bodyB == 0 ? 2 : 1);
             solveNormals(a, b, m.normal, block, points, m.pointCount, factors[m.constraint],
                          settings, inverseH, bias, largestChange, softScale);
+        }
+        if (slid && softScales == nullptr && !m.grouped) {
+            onPatch(a, b, bodyA, bodyB, m, points,
+                    [&](PatchBodies& on, std::span<PatchPoint> patch) {
+                        splitPatch(on, m.tangents(), patch);
+                        return true;
+                    });
         }
         a.store(bodyA);
         b.store(bodyB);

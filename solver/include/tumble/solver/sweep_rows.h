@@ -84,9 +84,11 @@ public:
     /// One sweep, as ContactSolver::solveVelocitySweep (which calls it) without the exactly
     /// solved groups; returns the largest velocity change (m/s) when measuring. `softScales`:
     /// the soft step's mass scales by SoftContact's kinds (its biased sweep), or null.
+    /// `patches`: the soft step's sweeps, whose coupled friction starts from a sliding
+    /// manifold's patch (slide_patch.h).
     Real sweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                std::span<NormalFactor> factors, const SolverSettings& settings, Real inverseH,
-               Real bias, const Real* softScales = nullptr);
+               Real bias, const Real* softScales = nullptr, bool patches = false);
     /// Soft step: the points' separations, one per point in the rows' order, and the friction
     /// targets, one per constraint.
     void softTargets(std::span<const Real> separations,
