@@ -6,7 +6,6 @@
 
 #include "contact_kernels.h"
 #include "normal_block.h"
-#include "slide_patch.h"
 #include "tumble/core/lane_kernel.h"
 
 namespace tumble {
@@ -229,9 +228,16 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
             patches && bundle.maxPoints > 1 && settings.friction == FrictionModel::Coupled
                 ? slidePatches(bundle, bodies, settings, soft, v)
                 : 0u;
-        largestChange = std::max(
-            largestChange, soft && bundle.grouped ? solveFrictionHoldingGroups(bundle, settings, v)
-                                                  : solveFriction(bundle, settings, v));
+        // The biased sweep leaves the points' rows of exactly solved groups to the relax sweep
+        // (ContactSolver::softSweep), and those of a face whose patch slid (slide_patch.cpp).
+        if (patches && soft)
+            bundle.slidBiased = slid;
+        unsigned held = soft ? slid : 0u;
+        for (int lane = 0; soft && bundle.grouped && lane < bundle.laneCount; ++lane)
+            held |= bundle.normals[lane] ? 0u : 1u << lane;
+        largestChange =
+            std::max(largestChange, held != 0 ? solveFrictionHolding(bundle, settings, v, held)
+                                              : solveFriction(bundle, settings, v));
         if (bundle.angular) {
             scatter(bundle, v);
             for (int lane = 0; lane < bundle.laneCount; ++lane) {
@@ -246,9 +252,10 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
         }
         largestChange = std::max(largestChange, solveNormals(bundle, constraints, factors, settings,
                                                              bias, inverseH, soft, v));
-        if (slid != 0 && !soft) {  // solveNormals stored the velocities
+        if (patches && !soft && (slid | bundle.slidBiased) != 0) {
+            // solveNormals stored the velocities
             gather(bundle, v);
-            splitPatches(bundle, bodies, slid, v);
+            settlePatches(bundle, bodies, slid | bundle.slidBiased, v);
             scatter(bundle, v);
         }
     }
@@ -356,97 +363,8 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle, const SolverS
 // velocities and impulses put back, which leaves them as if not solved (no two lanes of a
 // bundle share a moving body), the other lanes as solveFriction leaves them, as SweepRows::sweep
 // does manifold by manifold. The default step's kernel stays as it was.
-// The soft step's patch of lane `lane`'s manifold (slide_patch.h), on the lanes' values:
-// `solve` (slidePatch or splitPatch) on them, kept when it returns true.
-template <class Solve>
-bool ContactRows::onPatch(Bundle& bundle, int lane, std::span<const SolverBody> solverBodies,
-                          Lane (&v)[2][6], Solve&& solve) {
-    Point* const slots = points_.data() + bundle.firstPoint;
-    const int count = bundle.points[lane];
-    std::array<PatchPoint, 4> patch;
-    for (int i = 0; i < count; ++i) {
-        const Point& p = slots[i];
-        PatchPoint& q = patch[i];
-        q.normalImpulse = p.normalImpulse[lane];
-        q.tangentImpulse = {p.tangentImpulse[0][lane], p.tangentImpulse[1][lane]};
-        for (int r = 0; r < 2; ++r) {
-            for (int k = 0; k < 3; ++k) {
-                q.angularA[r](k) = p.tangentAngularA[r][k][lane];
-                q.angularB[r](k) = p.tangentAngularB[r][k][lane];
-                q.impulseA[r](k) = p.tangentImpulseA[r][k][lane];
-                q.impulseB[r](k) = p.tangentImpulseB[r][k][lane];
-            }
-        }
-    }
-    PatchBodies bodies;
-    for (int k = 0; k < 3; ++k) {
-        bodies.linearA(k) = v[0][k][lane];
-        bodies.angularA(k) = v[0][3 + k][lane];
-        bodies.linearB(k) = v[1][k][lane];
-        bodies.angularB(k) = v[1][3 + k][lane];
-    }
-    bodies.inverseMassA = bundle.inverseMassA[lane];
-    bodies.inverseMassB = bundle.inverseMassB[lane];
-    const Vec3 normal(bundle.normal[0][lane], bundle.normal[1][lane], bundle.normal[2][lane]);
-    bodies.yawA = normal.dot(solverBodies[bundle.bodyA[lane]].inverseInertia * normal);
-    bodies.yawB = normal.dot(solverBodies[bundle.bodyB[lane]].inverseInertia * normal);
-    std::array<Vec3, 2> tangents;
-    for (int r = 0; r < 2; ++r) {
-        for (int k = 0; k < 3; ++k)
-            tangents[r](k) = bundle.tangents[r][k][lane];
-    }
-    const std::array<Real, 2> target = {bundle.tangentTarget[0][lane],
-                                        bundle.tangentTarget[1][lane]};
-    if (!solve(bodies, normal, tangents, target, bundle.friction[lane],
-               std::span<PatchPoint>(patch.data(), count)))
-        return false;
-    for (int k = 0; k < 3; ++k) {
-        v[0][k][lane] = bodies.linearA(k);
-        v[0][3 + k][lane] = bodies.angularA(k);
-        v[1][k][lane] = bodies.linearB(k);
-        v[1][3 + k][lane] = bodies.angularB(k);
-    }
-    for (int i = 0; i < count; ++i) {
-        slots[i].tangentImpulse[0][lane] = patch[i].tangentImpulse[0];
-        slots[i].tangentImpulse[1][lane] = patch[i].tangentImpulse[1];
-    }
-    return true;
-}
-
-unsigned ContactRows::slidePatches(Bundle& bundle, std::span<const SolverBody> solverBodies,
-                                   const SolverSettings& settings, bool soft, Lane (&v)[2][6]) {
-    unsigned slid = 0;
-    for (int lane = 0; lane < bundle.laneCount; ++lane) {
-        if (bundle.points[lane] < 2 || (soft && !bundle.normals[lane]))
-            continue;
-        const bool on = onPatch(
-            bundle, lane, solverBodies, v,
-            [&](PatchBodies& bodies, const Vec3& normal, const std::array<Vec3, 2>& tangents,
-                const std::array<Real, 2>& target, Real friction, std::span<PatchPoint> patch) {
-                return slidePatch(bodies, normal, tangents, target, friction, settings.relaxation,
-                                  patch);
-            });
-        slid |= on ? 1u << lane : 0u;
-    }
-    return slid;
-}
-
-void ContactRows::splitPatches(Bundle& bundle, std::span<const SolverBody> solverBodies,
-                               unsigned slid, Lane (&v)[2][6]) {
-    for (int lane = 0; lane < bundle.laneCount; ++lane) {
-        if ((slid & (1u << lane)) == 0 || !bundle.normals[lane])
-            continue;
-        onPatch(bundle, lane, solverBodies, v,
-                [](PatchBodies& bodies, const Vec3&, const std::array<Vec3, 2>& tangents,
-                   const std::array<Real, 2>&, Real, std::span<PatchPoint> patch) {
-                    splitPatch(bodies, tangents, patch);
-                    return true;
-                });
-    }
-}
-
-Real ContactRows::solveFrictionHoldingGroups(Bundle& bundle, const SolverSettings& settings,
-                                             Lane (&v)[2][6]) {
+Real ContactRows::solveFrictionHolding(Bundle& bundle, const SolverSettings& settings,
+                                       Lane (&v)[2][6], unsigned held) {
     Lane kept[2][6];
     std::copy(&v[0][0], &v[0][0] + 12, &kept[0][0]);
     Lane impulses[4][2];
@@ -456,7 +374,7 @@ Real ContactRows::solveFrictionHoldingGroups(Bundle& bundle, const SolverSetting
     }
     const Real largestChange = solveFriction(bundle, settings, v);
     for (int lane = 0; lane < bundle.laneCount; ++lane) {
-        if (bundle.normals[lane])
+        if ((held & (1u << lane)) == 0)
             continue;
         for (int body = 0; body < 2; ++body) {
             for (int k = 0; k < 6; ++k)

@@ -20,6 +20,8 @@
 // about its normal with no slip at c, is left to the points' rows as it was.
 #include "slide_patch.h"
 
+#include <algorithm>
+
 #include "contact_kernels.h"
 
 namespace tumble {
@@ -94,20 +96,26 @@ bool slidePatch(PatchBodies& bodies, const Vec3& normal, const std::array<Vec3, 
 }
 
 // The relax sweep's normal rows move load between the points (a face that starts to slide
-// tips onto its leading edge): split by the normals the friction rows read, a 0.2 m cube at
-// its onset on a turning platform had a trailing point at twice its own disc (4 x 30). Moving
-// friction between points at one height along one direction changes no force and no tipping
-// torque, and the twist only by the shift of c across the slip.
-void splitPatch(PatchBodies& bodies, const std::array<Vec3, 2>& tangents,
-                std::span<PatchPoint> points) {
+// tips onto its leading edge), and the friction rows before them read the biased sweep's: split
+// by those, a 0.2 m cube at its onset on a turning platform had a trailing point at twice its
+// own disc (4 x 30), and with the biased sweep keeping the patch (sweep_rows.cpp) a lifted point
+// kept friction on no load. So a patch that slid in either sweep of the substep has its friction
+// split by the new normals, its sum kept. (Brought within each point's disc alone, or split
+// whenever a point left its disc, sticking cubes let go early: at 0.84 and 0.79 of the onset,
+// mu 0.82.) Moving friction between points at one height along one direction
+// changes no force and no tipping torque, and the twist only by the shift of c across the slip.
+void settlePatch(PatchBodies& bodies, const std::array<Vec3, 2>& tangents, bool slid,
+                 std::span<PatchPoint> points) {
+    using Vec2 = Eigen::Matrix<Real, 2, 1>;
     Real total = 0;
-    Eigen::Matrix<Real, 2, 1> patch = Eigen::Matrix<Real, 2, 1>::Zero();
+    Vec2 patch = Vec2::Zero();
     for (const PatchPoint& p : points) {
         total += p.normalImpulse;
-        patch += Eigen::Matrix<Real, 2, 1>(p.tangentImpulse[0], p.tangentImpulse[1]);
+        patch += Vec2(p.tangentImpulse[0], p.tangentImpulse[1]);
     }
-    if (total > 0)
-        setShares(bodies, tangents, points, patch, total, 1);
+    if (!slid || !(total > 0))
+        return;
+    setShares(bodies, tangents, points, patch, total, 1);
 }
 
 }  // namespace tumble

@@ -132,6 +132,7 @@ private:
         Lane inverseMassA, inverseMassB, friction;
         Lane tangentTarget[2]{};  // the friction rows' v_t target; 0 but in the soft step
         LaneMask hasPoint[4];     // lanes whose manifold has point i
+        unsigned slidBiased = 0;  // soft step: lanes whose patch slid in the biased sweep
     };
     struct Velocity {
         Real v[6];  // linear, then angular (world)
@@ -143,18 +144,18 @@ private:
     Real solveFriction(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6]);
     /// The sliding patch (slide_patch.h) of each lane of several points, lane by lane; `soft`
     /// leaves the lanes of exactly solved groups, as the biased sweep's friction does. Returns
-    /// the lanes that slid (bit per lane), whose friction splitPatches splits again after the
-    /// relax sweep's normal rows.
+    /// the lanes that slid (bit per lane), which settlePatches reads after the relax sweep's
+    /// normal rows.
     unsigned slidePatches(Bundle& bundle, std::span<const SolverBody> solverBodies,
                           const SolverSettings& settings, bool soft, Lane (&v)[2][6]);
-    void splitPatches(Bundle& bundle, std::span<const SolverBody> solverBodies, unsigned slid,
-                      Lane (&v)[2][6]);
+    void settlePatches(Bundle& bundle, std::span<const SolverBody> solverBodies, unsigned slid,
+                       Lane (&v)[2][6]);
     template <class Solve>
     bool onPatch(Bundle& bundle, int lane, std::span<const SolverBody> solverBodies,
                  Lane (&v)[2][6], Solve&& solve);
-    /// solveFriction with the lanes of exactly solved groups left as they were (soft step).
-    Real solveFrictionHoldingGroups(Bundle& bundle, const SolverSettings& settings,
-                                    Lane (&v)[2][6]);
+    /// solveFriction with the lanes in `held` (bit per lane) left as they were (soft step).
+    Real solveFrictionHolding(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6],
+                              unsigned held);
     Real solveNormals(Bundle& bundle, std::span<ContactConstraint> constraints,
                       std::span<NormalFactor> factors, const SolverSettings& settings, Real bias,
                       Real inverseH, bool soft, Lane (&v)[2][6]);

@@ -118,6 +118,8 @@ private:
     /// changes a point's target inputs (add, softTargets, dropBounces, dropBounceCorrections).
     bool targetsStale_ = true;
     std::array<std::uint64_t, 3> targetInputs_{};  ///< bias, slop, 1/h
+    /// Soft step, per manifold: its patch slid in the substep's biased sweep (slide_patch.h).
+    std::vector<std::uint8_t> slidBiased_;
 };
 
 }  // namespace tumble
