@@ -27,9 +27,12 @@ Vec3 frictionImpulse(const World& world) {
 
 // A unit cube at rest on the ground (1 s, never asleep) under a random yaw, kicked at a speed
 // along a random direction: its four points start to slide together, and the step's friction is
-// the Coulomb limit, mu m g h against the slip, in that step and the next. Swept: the soft
-// step's two settings, mass (density), mu, speed, both yaws. Tolerance, written before the
-// sweep was run: 1e-6 of mu m g h (the pushed box's closed form in sleep_test.cpp). Before the
+// the Coulomb limit, mu m g h against the slip, in that step and the next; in the first, its
+// substeps move it as the closed form of their own (before the biased sweep kept the patch, the
+// pushed cube's first substep lost a fifth of its friction and moved 3e-5 m too far). Swept: the
+// soft step's two settings, mass (density), mu, speed, both yaws. Tolerances, written before the
+// sweep was run: 1e-6 of mu m g h, and 1e-6 of the step's travel (the pushed box's closed form
+// in sleep_test.cpp). Before the
 // patch the step it started to slide in fell 4.5e-3 short (3 x 45, the pushed 1000 kg cube:
 // the points' coupled rows scattered the friction across the slip).
 TEST(SoftSlide, KickedCubeTakesTheCoulombLimitFromTheFirstStep) {
@@ -59,6 +62,7 @@ TEST(SoftSlide, KickedCubeTakesTheCoulombLimitFromTheFirstStep) {
                     world.setLinearVelocity(cube, speed * along);
                     const Real h = world.settings().timeStep;
                     const Real limit = mu * world.massProperties(cube).mass * kGravity * h;
+                    const Vec3 start = world.position(cube);
                     for (int k = 0; k < 2; ++k) {
                         ASSERT_TRUE(world.step().ok());
                         const Vec3 friction = frictionImpulse(world);
@@ -68,6 +72,17 @@ TEST(SoftSlide, KickedCubeTakesTheCoulombLimitFromTheFirstStep) {
                                      << heading << " step " << k);
                         EXPECT_NEAR(friction.dot(along), -limit, 1e-6 * limit);
                         EXPECT_NEAR(friction.cross(along).norm(), 0, 1e-6 * limit);
+                        if (k == 0) {
+                            // Each substep of hs slows it by mu g hs before it moves:
+                            // x = n hs v0 - mu g hs^2 n (n + 1) / 2.
+                            const int n = step.softSubsteps;
+                            const Real hs = h / n;
+                            const Real x =
+                                n * hs * speed - mu * kGravity * hs * hs * n * (n + 1) / 2;
+                            const Vec3 moved = world.position(cube) - start;
+                            EXPECT_NEAR(moved.dot(along), x, 1e-6 * x);
+                            EXPECT_NEAR(moved.cross(along).head<2>().norm(), 0, 1e-6 * x);
+                        }
                     }
                     ++cases;
                 }
