@@ -207,7 +207,7 @@ TUMBLE_LANE_KERNEL void ContactRows::scatter(const Bundle& bundle, const Lane (&
 
 Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                         std::span<NormalFactor> factors, const SolverSettings& settings, Real bias,
-                        Real inverseH, bool soft, bool resident) {
+                        Real inverseH, bool soft, bool resident, bool patches) {
     // No contact rows (a net in flight): copying every body's velocity in and out again changes
     // nothing, and was 5 % of the net-10 step (10 sweeps over 101 bodies).
     if (bundles_.empty())
@@ -224,9 +224,20 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
     for (Bundle& bundle : bundles_) {
         Lane v[2][6];
         gather(bundle, v);
-        largestChange = std::max(
-            largestChange, soft && bundle.grouped ? solveFrictionHoldingGroups(bundle, settings, v)
-                                                  : solveFriction(bundle, settings, v));
+        const unsigned slid =
+            patches && bundle.maxPoints > 1 && settings.friction == FrictionModel::Coupled
+                ? slidePatches(bundle, bodies, settings, soft, v)
+                : 0u;
+        // The biased sweep leaves the points' rows of exactly solved groups to the relax sweep
+        // (ContactSolver::softSweep), and those of a face whose patch slid (slide_patch.cpp).
+        if (patches && soft)
+            bundle.slidBiased = slid;
+        unsigned held = soft ? slid : 0u;
+        for (int lane = 0; soft && bundle.grouped && lane < bundle.laneCount; ++lane)
+            held |= bundle.normals[lane] ? 0u : 1u << lane;
+        largestChange =
+            std::max(largestChange, held != 0 ? solveFrictionHolding(bundle, settings, v, held)
+                                              : solveFriction(bundle, settings, v));
         if (bundle.angular) {
             scatter(bundle, v);
             for (int lane = 0; lane < bundle.laneCount; ++lane) {
@@ -241,6 +252,12 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
         }
         largestChange = std::max(largestChange, solveNormals(bundle, constraints, factors, settings,
                                                              bias, inverseH, soft, v));
+        if (patches && !soft && (slid | bundle.slidBiased) != 0) {
+            // solveNormals stored the velocities
+            gather(bundle, v);
+            settlePatches(bundle, bodies, slid | bundle.slidBiased, v);
+            scatter(bundle, v);
+        }
     }
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         for (int k = 0; k < 3; ++k) {
@@ -346,8 +363,8 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle, const SolverS
 // velocities and impulses put back, which leaves them as if not solved (no two lanes of a
 // bundle share a moving body), the other lanes as solveFriction leaves them, as SweepRows::sweep
 // does manifold by manifold. The default step's kernel stays as it was.
-Real ContactRows::solveFrictionHoldingGroups(Bundle& bundle, const SolverSettings& settings,
-                                             Lane (&v)[2][6]) {
+Real ContactRows::solveFrictionHolding(Bundle& bundle, const SolverSettings& settings,
+                                       Lane (&v)[2][6], unsigned held) {
     Lane kept[2][6];
     std::copy(&v[0][0], &v[0][0] + 12, &kept[0][0]);
     Lane impulses[4][2];
@@ -357,7 +374,7 @@ Real ContactRows::solveFrictionHoldingGroups(Bundle& bundle, const SolverSetting
     }
     const Real largestChange = solveFriction(bundle, settings, v);
     for (int lane = 0; lane < bundle.laneCount; ++lane) {
-        if (bundle.normals[lane])
+        if ((held & (1u << lane)) == 0)
             continue;
         for (int body = 0; body < 2; ++body) {
             for (int k = 0; k < 6; ++k)

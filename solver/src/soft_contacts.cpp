@@ -232,10 +232,11 @@ void ContactSolver::softSweep(std::span<SolverBody> bodies,
                               const SoftContact* soft) {
     const Real bias = soft != nullptr ? 1 / inverseH : 0;
     if (wide_) {
-        rows_.sweep(bodies, constraints, factors_, settings, bias, inverseH, soft != nullptr);
+        rows_.sweep(bodies, constraints, factors_, settings, bias, inverseH, soft != nullptr, false,
+                    true);
     } else {
         narrow_.sweep(bodies, constraints, factors_, settings, inverseH, bias,
-                      soft != nullptr ? soft->massScale.data() : nullptr);
+                      soft != nullptr ? soft->massScale.data() : nullptr, true);
     }
     if (!islands_.empty()) {
         islands_.solve(bodies, constraints, settings.relaxation, bias, settings.slop, inverseH);

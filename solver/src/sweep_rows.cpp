@@ -5,6 +5,7 @@
 
 #include "contact_kernels.h"
 #include "normal_block.h"
+#include "slide_patch.h"
 #include "tumble/solver/contact_solver.h"
 
 namespace tumble {
@@ -109,6 +110,45 @@ Real solveFriction(SweepBody& a, SweepBody& b, const SweepManifold& m, SweepPoin
                                   : solveFriction<false, false>(a, b, m, points, c, omega);
 }
 
+// The soft step's patch of a manifold of several points (slide_patch.h), on the sweep's copies:
+// `solve` (slidePatch or settlePatch) on them, kept when it returns true.
+template <class Solve>
+bool onPatch(SweepBody& a, SweepBody& b, const SolverBody& bodyA, const SolverBody& bodyB,
+             const SweepManifold& m, SweepPoint* points, Solve&& solve) {
+    std::array<PatchPoint, 4> patch;
+    for (int i = 0; i < m.pointCount; ++i) {
+        const SweepPoint& p = points[i];
+        PatchPoint& q = patch[i];
+        q.normalImpulse = p.normalImpulse;
+        q.tangentImpulse = p.tangentImpulse;
+        for (int k = 0; k < 2; ++k) {
+            q.angularA[k] =
+                Vec3(p.tangentAngularA[0][k], p.tangentAngularA[1][k], p.tangentAngularA[2][k]);
+            q.angularB[k] =
+                Vec3(p.tangentAngularB[0][k], p.tangentAngularB[1][k], p.tangentAngularB[2][k]);
+            q.impulseA[k] = p.tangentImpulseA[k];
+            q.impulseB[k] = p.tangentImpulseB[k];
+        }
+    }
+    PatchBodies bodies{a.linearVelocity,
+                       a.angularVelocity,
+                       b.linearVelocity,
+                       b.angularVelocity,
+                       a.inverseMass,
+                       b.inverseMass,
+                       m.normal.dot(bodyA.inverseInertia * m.normal),
+                       m.normal.dot(bodyB.inverseInertia * m.normal)};
+    if (!solve(bodies, std::span<PatchPoint>(patch.data(), m.pointCount)))
+        return false;
+    a.linearVelocity = bodies.linearA;
+    a.angularVelocity = bodies.angularA;
+    b.linearVelocity = bodies.linearB;
+    b.angularVelocity = bodies.angularB;
+    for (int i = 0; i < m.pointCount; ++i)
+        points[i].tangentImpulse = patch[i].tangentImpulse;
+    return true;
+}
+
 }  // namespace
 
 void SweepRows::clear() {
@@ -170,7 +210,7 @@ void SweepRows::add(const ContactConstraint& c, std::uint32_t index,
 
 Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                       std::span<NormalFactor> factors, const SolverSettings& settings,
-                      Real inverseH, Real bias, const Real* softScales) {
+                      Real inverseH, Real bias, const Real* softScales, bool patches) {
     Real largestChange = 0;
     // The targets are the same in every sweep of a phase (biased, relax): the first computes
     // them. Compared as bits, so a -0 bias or a NaN is not taken for another value.
@@ -180,6 +220,8 @@ Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint>
     const bool refresh = targetsStale_ || inputs != targetInputs_;
     targetsStale_ = false;
     targetInputs_ = inputs;
+    if (patches && softScales != nullptr)
+        slidBiased_.assign(manifolds_.size(), 0);  // capacity kept from step to step
     for (const SweepManifold& m : manifolds_) {
         SolverBody& bodyA = bodies[m.bodyA];
         SolverBody& bodyB = bodies[m.bodyB];
@@ -193,9 +235,26 @@ Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint>
         // Friction first, with the normal impulses of the last sweep: non-penetration, solved
         // last, matters more. The soft step's biased sweep leaves the friction of exactly
         // solved groups to its relax sweep (ContactSolver::softSweep says why).
+        bool slid = false;
         if (m.friction > 0 && !(m.grouped && softScales != nullptr)) {
-            largestChange = std::max(
-                largestChange, solveFriction(a, b, m, points, constraints[m.constraint], settings));
+            if (patches && m.pointCount > 1 && settings.friction == FrictionModel::Coupled) {
+                slid = onPatch(a, b, bodyA, bodyB, m, points,
+                               [&](PatchBodies& on, std::span<PatchPoint> patch) {
+                                   return slidePatch(on, m.normal, m.tangents(), m.tangentTarget,
+                                                     m.friction, settings.relaxation, patch);
+                               });
+            }
+            // The biased sweep keeps a sliding face's patch: the points' rows would meet the
+            // tipping its friction gives before the normal rows hold it, read it as slip
+            // reversed at the points and let go of a fifth of the friction (the pushed cube's
+            // first substep moved 3e-5 m too far, its velocity right after the relax sweep).
+            if (patches && softScales != nullptr)
+                slidBiased_[&m - manifolds_.data()] = slid ? 1 : 0;
+            if (!(slid && softScales != nullptr)) {
+                largestChange =
+                    std::max(largestChange,
+                             solveFriction(a, b, m, points, constraints[m.constraint], settings));
+            }
         }
         if (m.angular) {
             // Rare: these rows read the constraint, which gets the current normal impulses.
@@ -217,6 +276,15 @@ Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint>
                                         : softScales + (m.bodyA == 0 || m.bodyB == 0 ? 2 : 1);
             solveNormals(a, b, m.normal, block, points, m.pointCount, factors[m.constraint],
                          settings, inverseH, bias, largestChange, softScale);
+        }
+        if (patches && softScales == nullptr && !m.grouped && m.friction > 0 && m.pointCount > 1 &&
+            settings.friction == FrictionModel::Coupled) {
+            onPatch(a, b, bodyA, bodyB, m, points,
+                    [&](PatchBodies& on, std::span<PatchPoint> patch) {
+                        settlePatch(on, m.tangents(),
+                                    slid || slidBiased_[&m - manifolds_.data()] != 0, patch);
+                        return true;
+                    });
         }
         a.store(bodyA);
         b.store(bodyB);

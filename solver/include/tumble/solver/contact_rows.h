@@ -74,9 +74,10 @@ public:
     /// scale softTargets gave it (SweepRows::sweep's softScales, the same bits).
     /// `resident`: the bodies' velocities are as the last sweep stored them (nothing has changed
     /// them since), so the copy of them into the rows' own array is skipped.
+    /// `patches`: the soft step's sweeps (SweepRows::sweep's, the same bits).
     Real sweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                std::span<NormalFactor> factors, const SolverSettings& settings, Real bias,
-               Real inverseH, bool soft = false, bool resident = false);
+               Real inverseH, bool soft = false, bool resident = false, bool patches = false);
     /// Soft step: each point's separation (`separations`, constraint j's points from
     /// `firstPoint[j]`) as its target at the substep's inverseH, no bounce; `scales`:
     /// SoftContact::massScale.
@@ -131,6 +132,7 @@ private:
         Lane inverseMassA, inverseMassB, friction;
         Lane tangentTarget[2]{};  // the friction rows' v_t target; 0 but in the soft step
         LaneMask hasPoint[4];     // lanes whose manifold has point i
+        unsigned slidBiased = 0;  // soft step: lanes whose patch slid in the biased sweep
     };
     struct Velocity {
         Real v[6];  // linear, then angular (world)
@@ -140,9 +142,20 @@ private:
     void fill(Bundle& bundle, int lane, const ContactConstraint& c, std::uint32_t index, Real slop,
               Real inverseH);
     Real solveFriction(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6]);
-    /// solveFriction with the lanes of exactly solved groups left as they were (soft step).
-    Real solveFrictionHoldingGroups(Bundle& bundle, const SolverSettings& settings,
-                                    Lane (&v)[2][6]);
+    /// The sliding patch (slide_patch.h) of each lane of several points, lane by lane; `soft`
+    /// leaves the lanes of exactly solved groups, as the biased sweep's friction does. Returns
+    /// the lanes that slid (bit per lane), which settlePatches reads after the relax sweep's
+    /// normal rows.
+    unsigned slidePatches(Bundle& bundle, std::span<const SolverBody> solverBodies,
+                          const SolverSettings& settings, bool soft, Lane (&v)[2][6]);
+    void settlePatches(Bundle& bundle, std::span<const SolverBody> solverBodies, unsigned slid,
+                       Lane (&v)[2][6]);
+    template <class Solve>
+    bool onPatch(Bundle& bundle, int lane, std::span<const SolverBody> solverBodies,
+                 Lane (&v)[2][6], Solve&& solve);
+    /// solveFriction with the lanes in `held` (bit per lane) left as they were (soft step).
+    Real solveFrictionHolding(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6],
+                              unsigned held);
     Real solveNormals(Bundle& bundle, std::span<ContactConstraint> constraints,
                       std::span<NormalFactor> factors, const SolverSettings& settings, Real bias,
                       Real inverseH, bool soft, Lane (&v)[2][6]);

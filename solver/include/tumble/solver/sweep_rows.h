@@ -84,9 +84,11 @@ public:
     /// One sweep, as ContactSolver::solveVelocitySweep (which calls it) without the exactly
     /// solved groups; returns the largest velocity change (m/s) when measuring. `softScales`:
     /// the soft step's mass scales by SoftContact's kinds (its biased sweep), or null.
+    /// `patches`: the soft step's sweeps, whose coupled friction starts from a sliding
+    /// manifold's patch (slide_patch.h).
     Real sweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                std::span<NormalFactor> factors, const SolverSettings& settings, Real inverseH,
-               Real bias, const Real* softScales = nullptr);
+               Real bias, const Real* softScales = nullptr, bool patches = false);
     /// Soft step: the points' separations, one per point in the rows' order, and the friction
     /// targets, one per constraint.
     void softTargets(std::span<const Real> separations,
@@ -116,6 +118,8 @@ private:
     /// changes a point's target inputs (add, softTargets, dropBounces, dropBounceCorrections).
     bool targetsStale_ = true;
     std::array<std::uint64_t, 3> targetInputs_{};  ///< bias, slop, 1/h
+    /// Soft step, per manifold: its patch slid in the substep's biased sweep (slide_patch.h).
+    std::vector<std::uint8_t> slidBiased_;
 };
 
 }  // namespace tumble
