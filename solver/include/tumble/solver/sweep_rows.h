@@ -107,6 +107,12 @@ public:
 private:
     /// The points added since clear().
     std::span<SweepPoint> points() { return {points_.data(), pointCount_}; }
+    /// sweep() with `patches` fixed at compile time (sweep_rows.cpp says why).
+    template <bool Patches>
+    [[gnu::flatten]] Real sweepWith(std::span<SolverBody> bodies,
+                                    std::span<ContactConstraint> constraints,
+                                    std::span<NormalFactor> factors, const SolverSettings& settings,
+                                    Real inverseH, Real bias, const Real* softScales);
 
     std::vector<SweepManifold> manifolds_;
     /// The first pointCount_ are this step's; the rest is storage kept for the next steps.
