@@ -238,8 +238,9 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
         largestChange =
             std::max(largestChange, held != 0 ? solveFrictionHolding(bundle, settings, v, held)
                                               : solveFriction(bundle, settings, v));
-        if (bundle.angular) {
-            scatter(bundle, v);
+        // The soft step's relax sweep solves them after its normal rows (ContactSolver::softSweep).
+        const bool angularLast = patches && !soft;
+        const auto solveAngular = [&] {
             for (int lane = 0; lane < bundle.laneCount; ++lane) {
                 ContactConstraint& c = constraints[bundle.constraint[lane]];
                 if (c.spinMass > 0 || c.rollingActive) {
@@ -248,10 +249,16 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
                                  solveAngularAlone(bundle, lane, bodies, c, settings.relaxation));
                 }
             }
+        };
+        if (bundle.angular && !angularLast) {
+            scatter(bundle, v);
+            solveAngular();
             gather(bundle, v);
         }
         largestChange = std::max(largestChange, solveNormals(bundle, constraints, factors, settings,
                                                              bias, inverseH, soft, v));
+        if (bundle.angular && angularLast)
+            solveAngular();  // solveNormals stored the velocities
         if (patches && !soft && (slid | bundle.slidBiased) != 0) {
             // solveNormals stored the velocities
             gather(bundle, v);

@@ -272,8 +272,8 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
                              solveFriction(a, b, m, points, constraints[m.constraint], settings));
             }
         }
-        if (m.angular) {
-            // Rare: these rows read the constraint, which gets the current normal impulses.
+        // Rare: these rows read the constraint, which gets the current normal impulses.
+        const auto solveAngular = [&] {
             ContactConstraint& c = constraints[m.constraint];
             for (int i = 0; i < m.pointCount; ++i)
                 c.points[i].normalImpulse = points[i].normalImpulse;
@@ -283,7 +283,11 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
                 std::max(largestChange, solveAngularFriction(bodyA, bodyB, c, settings.relaxation));
             a = SweepBody(bodyA);
             b = SweepBody(bodyB);
-        }
+        };
+        // The soft step's relax sweep solves them after its normal rows (ContactSolver::softSweep).
+        const bool angularLast = Patches && softScales == nullptr;
+        if (m.angular && !angularLast)
+            solveAngular();
         if (!m.grouped) {
             const Mat4* block = m.block == SweepManifold::kNoBlock ? nullptr : &blocks_[m.block];
             // The soft step's kinds (SoftContact): 2 against a static body (body 0), else 1.
@@ -293,6 +297,8 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
             solveNormals(a, b, m.normal, block, points, m.pointCount, factors[m.constraint],
                          settings, inverseH, bias, largestChange, softScale);
         }
+        if (m.angular && angularLast)
+            solveAngular();
         if (Patches && softScales == nullptr && !m.grouped && m.friction > 0 && m.pointCount > 1 &&
             settings.friction == FrictionModel::Coupled) {
             onPatch(a, b, bodyA, bodyB, m, points,
