@@ -238,32 +238,27 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
         largestChange =
             std::max(largestChange, held != 0 ? solveFrictionHolding(bundle, settings, v, held)
                                               : solveFriction(bundle, settings, v));
-        // The soft step's relax sweep solves them after its normal rows (ContactSolver::softSweep).
-        const bool angularLast = patches && !soft;
-        const auto solveAngular = [&] {
-            for (int lane = 0; lane < bundle.laneCount; ++lane) {
-                ContactConstraint& c = constraints[bundle.constraint[lane]];
-                if (c.spinMass > 0 || c.rollingActive) {
-                    largestChange =
-                        std::max(largestChange,
-                                 solveAngularAlone(bundle, lane, bodies, c, settings.relaxation));
-                }
-            }
-        };
-        if (bundle.angular && !angularLast) {
+        const bool relax = patches && !soft;  // the soft step's relax sweep
+        if (bundle.angular && !relax) {
             scatter(bundle, v);
-            solveAngular();
+            largestChange = std::max(
+                largestChange, solveAngular(bundle, bodies, constraints, settings.relaxation));
             gather(bundle, v);
         }
         largestChange = std::max(largestChange, solveNormals(bundle, constraints, factors, settings,
                                                              bias, inverseH, soft, v));
-        if (bundle.angular && angularLast)
-            solveAngular();  // solveNormals stored the velocities
-        if (patches && !soft && (slid | bundle.slidBiased) != 0) {
-            // solveNormals stored the velocities
-            gather(bundle, v);
-            settlePatches(bundle, bodies, slid | bundle.slidBiased, v);
-            scatter(bundle, v);
+        if (relax) {
+            // solveNormals stored the velocities. The angular rows after the normal rows
+            // (ContactSolver::softSweep says why).
+            if (bundle.angular) {
+                largestChange = std::max(
+                    largestChange, solveAngular(bundle, bodies, constraints, settings.relaxation));
+            }
+            if ((slid | bundle.slidBiased) != 0) {
+                gather(bundle, v);
+                settlePatches(bundle, bodies, slid | bundle.slidBiased, v);
+                scatter(bundle, v);
+            }
         }
     }
     for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -390,6 +385,19 @@ Real ContactRows::solveFrictionHolding(Bundle& bundle, const SolverSettings& set
         for (int i = 0; i < bundle.maxPoints; ++i) {
             points_[bundle.firstPoint + i].tangentImpulse[0][lane] = impulses[i][0][lane];
             points_[bundle.firstPoint + i].tangentImpulse[1][lane] = impulses[i][1][lane];
+        }
+    }
+    return largestChange;
+}
+
+Real ContactRows::solveAngular(Bundle& bundle, std::span<const SolverBody> bodies,
+                               std::span<ContactConstraint> constraints, Real omega) {
+    Real largestChange = 0;
+    for (int lane = 0; lane < bundle.laneCount; ++lane) {
+        ContactConstraint& c = constraints[bundle.constraint[lane]];
+        if (c.spinMass > 0 || c.rollingActive) {
+            largestChange =
+                std::max(largestChange, solveAngularAlone(bundle, lane, bodies, c, omega));
         }
     }
     return largestChange;

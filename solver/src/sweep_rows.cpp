@@ -152,6 +152,22 @@ template <class Solve>
     return true;
 }
 
+// Rare: these rows read the constraint, which gets the current normal impulses, and the
+// bodies, which get the sweep's velocities.
+Real angularRows(SweepBody& a, SweepBody& b, SolverBody& bodyA, SolverBody& bodyB,
+                 const SweepManifold& m, const SweepPoint* points,
+                 std::span<ContactConstraint> constraints, Real omega) {
+    ContactConstraint& c = constraints[m.constraint];
+    for (int i = 0; i < m.pointCount; ++i)
+        c.points[i].normalImpulse = points[i].normalImpulse;
+    a.store(bodyA);
+    b.store(bodyB);
+    const Real change = solveAngularFriction(bodyA, bodyB, c, omega);
+    a = SweepBody(bodyA);
+    b = SweepBody(bodyB);
+    return change;
+}
+
 }  // namespace
 
 void SweepRows::clear() {
@@ -272,22 +288,12 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
                              solveFriction(a, b, m, points, constraints[m.constraint], settings));
             }
         }
-        // Rare: these rows read the constraint, which gets the current normal impulses.
-        const auto solveAngular = [&] {
-            ContactConstraint& c = constraints[m.constraint];
-            for (int i = 0; i < m.pointCount; ++i)
-                c.points[i].normalImpulse = points[i].normalImpulse;
-            a.store(bodyA);
-            b.store(bodyB);
-            largestChange =
-                std::max(largestChange, solveAngularFriction(bodyA, bodyB, c, settings.relaxation));
-            a = SweepBody(bodyA);
-            b = SweepBody(bodyB);
-        };
         // The soft step's relax sweep solves them after its normal rows (ContactSolver::softSweep).
         const bool angularLast = Patches && softScales == nullptr;
-        if (m.angular && !angularLast)
-            solveAngular();
+        if (m.angular && !angularLast) {
+            largestChange = std::max(largestChange, angularRows(a, b, bodyA, bodyB, m, points,
+                                                                constraints, settings.relaxation));
+        }
         if (!m.grouped) {
             const Mat4* block = m.block == SweepManifold::kNoBlock ? nullptr : &blocks_[m.block];
             // The soft step's kinds (SoftContact): 2 against a static body (body 0), else 1.
@@ -297,8 +303,10 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
             solveNormals(a, b, m.normal, block, points, m.pointCount, factors[m.constraint],
                          settings, inverseH, bias, largestChange, softScale);
         }
-        if (m.angular && angularLast)
-            solveAngular();
+        if (m.angular && angularLast) {
+            largestChange = std::max(largestChange, angularRows(a, b, bodyA, bodyB, m, points,
+                                                                constraints, settings.relaxation));
+        }
         if (Patches && softScales == nullptr && !m.grouped && m.friction > 0 && m.pointCount > 1 &&
             settings.friction == FrictionModel::Coupled) {
             onPatch(a, b, bodyA, bodyB, m, points,

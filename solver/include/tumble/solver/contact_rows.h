@@ -159,6 +159,9 @@ private:
     Real solveNormals(Bundle& bundle, std::span<ContactConstraint> constraints,
                       std::span<NormalFactor> factors, const SolverSettings& settings, Real bias,
                       Real inverseH, bool soft, Lane (&v)[2][6]);
+    /// The torsion and rolling rows of the bundle's lanes that have them, on velocities_.
+    Real solveAngular(Bundle& bundle, std::span<const SolverBody> bodies,
+                      std::span<ContactConstraint> constraints, Real omega);
     Real solveAngularAlone(Bundle& bundle, int lane, std::span<const SolverBody> bodies,
                            ContactConstraint& c, Real omega);
     Real solveNormalsAlone(Bundle& bundle, int lane, ContactConstraint& c, NormalFactor& factor,
