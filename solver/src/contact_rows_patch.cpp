@@ -66,9 +66,42 @@ bool ContactRows::onPatch(Bundle& bundle, int lane, std::span<const SolverBody> 
 
 unsigned ContactRows::slidePatches(Bundle& bundle, std::span<const SolverBody> solverBodies,
                                    const SolverSettings& settings, bool soft, Lane (&v)[2][6]) {
+    // Whether the lane's patch surely sticks (patchSticks), from its slots: one pass over the
+    // points' impulses and slips instead of onPatch's copy of their levers.
+    const auto sticks = [&](int lane) {
+        const Point* const slots = points_.data() + bundle.firstPoint;
+        Real total = 0;
+        std::array<Real, 2> old{};
+        std::array<Real, 2> turn{};  // sum N_i ((rB x t_k) . wB - (rA x t_k) . wA)
+        for (int i = 0; i < bundle.points[lane]; ++i) {
+            const Point& p = slots[i];
+            const Real n = p.normalImpulse[lane];
+            total += n;
+            for (int r = 0; r < 2; ++r) {
+                old[r] += p.tangentImpulse[r][lane];
+                Real lever = 0;
+                for (int k = 0; k < 3; ++k) {
+                    lever += p.tangentAngularB[r][k][lane] * v[1][3 + k][lane] -
+                             p.tangentAngularA[r][k][lane] * v[0][3 + k][lane];
+                }
+                turn[r] += n * lever;
+            }
+        }
+        if (!(total > 0))
+            return true;  // slidePatch does nothing
+        std::array<Real, 2> slip{};
+        for (int r = 0; r < 2; ++r) {
+            Real linear = 0;
+            for (int k = 0; k < 3; ++k)
+                linear += bundle.tangents[r][k][lane] * (v[1][k][lane] - v[0][k][lane]);
+            slip[r] = (linear + turn[r] / total) - bundle.tangentTarget[r][lane];
+        }
+        return patchSticks(total, old, slip, bundle.inverseMassA[lane] + bundle.inverseMassB[lane],
+                           bundle.friction[lane]);
+    };
     unsigned slid = 0;
     for (int lane = 0; lane < bundle.laneCount; ++lane) {
-        if (bundle.points[lane] < 2 || (soft && !bundle.normals[lane]))
+        if (bundle.points[lane] < 2 || (soft && !bundle.normals[lane]) || sticks(lane))
             continue;
         const bool on = onPatch(
             bundle, lane, solverBodies, v,
