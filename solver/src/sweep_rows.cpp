@@ -155,7 +155,7 @@ template <class Solve>
 // Whether a manifold's patch surely sticks (patchSticks), from the sweep's copies: one pass over
 // the points' impulses and slips instead of onPatch's copy of their levers, so a face well short
 // of sliding costs little (stack-20's faces all stick: the patch's 3.5 M instructions in 0.5 s at
-// 3 x 45 became 0.7 M). Inlined: out of line as onPatch is, pile-1000's soft step took 0.3 % more
+// 3 x 45 became 0.6 M). Inlined: out of line as onPatch is, pile-1000's soft step took 0.3 % more
 // instructions.
 [[gnu::always_inline]] inline bool patchSticks(const SweepBody& a, const SweepBody& b,
                                                const SweepManifold& m, const SweepPoint* points) {
