@@ -3,6 +3,7 @@
 #include <array>
 
 #include "slide_patch.h"
+#include "tumble/core/lane_kernel.h"
 #include "tumble/solver/contact_rows.h"
 
 namespace tumble {
@@ -64,11 +65,60 @@ bool ContactRows::onPatch(Bundle& bundle, int lane, std::span<const SolverBody> 
     return true;
 }
 
+// The lanes whose patch surely sticks (patchSticks, bit per lane): the sums of all four at once
+// from the slots instead of onPatch's copy of their levers, a lane's slots past its points masked
+// out by hasPoint. Lane by lane, the sums took 22 M instructions in pyramid-20's 0.5 s at 3 x 45;
+// four at once in the lane kernel's copy, 7.8 M.
+TUMBLE_LANE_KERNEL unsigned ContactRows::stickingPatches(const Bundle& bundle,
+                                                         const Lane (&v)[2][6]) const {
+    const Point* const slots = points_.data() + bundle.firstPoint;
+    const auto masked = [](LaneMask m, Lane x) {
+        return reinterpret_cast<Lane>(reinterpret_cast<LaneMask>(x) & m);
+    };
+    Lane total{};
+    Lane old[2]{};
+    Lane turn[2]{};  // sum N_i ((rB x t_k) . wB - (rA x t_k) . wA)
+    for (int i = 0; i < bundle.maxPoints; ++i) {
+        const Point& p = slots[i];
+        const LaneMask has = bundle.hasPoint[i];
+        const Lane n = masked(has, p.normalImpulse);
+        total += n;
+        for (int r = 0; r < 2; ++r) {
+            old[r] += masked(has, p.tangentImpulse[r]);
+            Lane lever{};
+            for (int k = 0; k < 3; ++k) {
+                lever +=
+                    p.tangentAngularB[r][k] * v[1][3 + k] - p.tangentAngularA[r][k] * v[0][3 + k];
+            }
+            turn[r] += masked(has, n * lever);
+        }
+    }
+    Lane slip[2];
+    for (int r = 0; r < 2; ++r) {
+        Lane linear{};
+        for (int k = 0; k < 3; ++k)
+            linear += bundle.tangents[r][k] * (v[1][k] - v[0][k]);
+        slip[r] = (linear + turn[r] / total) - bundle.tangentTarget[r];
+    }
+    const Lane inverseMasses = bundle.inverseMassA + bundle.inverseMassB;
+    unsigned sticking = 0;
+    for (int lane = 0; lane < bundle.laneCount; ++lane) {
+        sticking |=
+            patchSticks(total[lane], {old[0][lane], old[1][lane]}, {slip[0][lane], slip[1][lane]},
+                        inverseMasses[lane], bundle.friction[lane])
+                ? 1u << lane
+                : 0u;
+    }
+    return sticking;
+}
+
 unsigned ContactRows::slidePatches(Bundle& bundle, std::span<const SolverBody> solverBodies,
                                    const SolverSettings& settings, bool soft, Lane (&v)[2][6]) {
+    const unsigned sticking = stickingPatches(bundle, v);
     unsigned slid = 0;
     for (int lane = 0; lane < bundle.laneCount; ++lane) {
-        if (bundle.points[lane] < 2 || (soft && !bundle.normals[lane]))
+        if (bundle.points[lane] < 2 || (soft && !bundle.normals[lane]) ||
+            (sticking & (1u << lane)) != 0)
             continue;
         const bool on = onPatch(
             bundle, lane, solverBodies, v,

@@ -148,6 +148,9 @@ private:
     /// normal rows.
     unsigned slidePatches(Bundle& bundle, std::span<const SolverBody> solverBodies,
                           const SolverSettings& settings, bool soft, Lane (&v)[2][6]);
+    /// The lanes (bit per lane) whose patch surely sticks (patchSticks in slide_patch.h), which
+    /// slidePatches leaves.
+    unsigned stickingPatches(const Bundle& bundle, const Lane (&v)[2][6]) const;
     void settlePatches(Bundle& bundle, std::span<const SolverBody> solverBodies, unsigned slid,
                        Lane (&v)[2][6]);
     template <class Solve>
