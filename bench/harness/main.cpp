@@ -251,6 +251,12 @@ int main(int argc, char** argv) {
     app.add_option("--tumble-relax", tumbleRelax,
                    "Tumble's relax sweeps (default: as many as the peers' iterations)")
         ->check(CLI::NonNegativeNumber);
+    double tumbleTolerance = SolverSettings{}.tolerance;
+    app.add_option("--tumble-tolerance", tumbleTolerance,
+                   "Tumble's early exit from the sweeps (SolverSettings::tolerance, m/s; 0 runs "
+                   "every sweep)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
     int tumbleSoft = 0;
     app.add_option("--tumble-soft", tumbleSoft,
                    "also run Tumble with the soft step of this many substeps "
@@ -309,6 +315,7 @@ int main(int argc, char** argv) {
                                  .frictionAnchors = anchors,
                                  .tumbleIterations = tumbleIterations,
                                  .tumbleRelaxIterations = tumbleRelax,
+                                 .tumbleTolerance = tumbleTolerance,
                                  .tumbleSoftSubsteps = tumbleSoft,
                                  .tumbleSoftHertz = tumbleSoftHertz};
     std::vector<Peer> engineList = peers();

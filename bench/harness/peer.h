@@ -49,6 +49,8 @@ struct SceneSettings {
     /// negative count runs `iterations` of each, as Bullet runs its split-impulse pass.
     int tumbleIterations = -1;
     int tumbleRelaxIterations = -1;
+    /// Tumble only: SolverSettings::tolerance, the sweeps' early exit (m/s; 0 runs them all).
+    Real tumbleTolerance = SolverSettings{}.tolerance;
     /// The "tumble-soft" engine only (createTumbleSoft): SolverSettings::softSubsteps.
     int tumbleSoftSubsteps = 4;
     Real tumbleSoftHertz = SolverSettings{}.contactHertz;  ///< SolverSettings::contactHertz

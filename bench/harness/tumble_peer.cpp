@@ -81,6 +81,7 @@ private:
         def.solver.iterations = s.tumbleIterations >= 0 ? s.tumbleIterations : s.iterations;
         def.solver.relaxIterations =
             s.tumbleRelaxIterations >= 0 ? s.tumbleRelaxIterations : s.iterations;
+        def.solver.tolerance = s.tumbleTolerance;
         def.enableSleep = false;  // every engine simulates every body
         def.solver.colouredContacts = s.colouredContacts;
         def.solver.frictionAnchors = s.frictionAnchors;
