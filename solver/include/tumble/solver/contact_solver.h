@@ -321,6 +321,7 @@ private:
     bool bounceCorrections_ = false;          ///< some point has one this step
     std::vector<SoftPoint> softPoints_;       ///< soft step
     std::vector<Real> softSeparations_;       ///< soft step: the rows' current ones (m)
+    bool softSeparationsStale_ = false;       ///< soft step: not yet computed this step
     std::vector<SoftFriction> softFriction_;  ///< soft step: the manifolds with friction
     /// soft step: each constraint's friction target, v_t along t_1, t_2 (m/s)
     std::vector<std::array<Real, 2>> softTangentTargets_;
