@@ -282,6 +282,16 @@ void Islands::markAsleep(BodyStore& bodies, std::uint32_t index) {
         events->sleep.push_back({bodies.idAt(index), true});
 }
 
+void Islands::reserve(std::size_t bodyCount) {
+    parent_.reserve(bodyCount);
+    islandSleepTime_.reserve(bodyCount);
+    flags_.reserve(bodyCount);
+    islandBalance_.reserve(bodyCount);
+    stack_.reserve(bodyCount);
+    visited_.reserve(bodyCount);
+    sleepers_.reserve(bodyCount);
+}
+
 std::uint32_t Islands::find(std::uint32_t position) {
     while (parent_[position] != position) {
         parent_[position] = parent_[parent_[position]];

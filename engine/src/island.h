@@ -69,6 +69,10 @@ public:
                      const DragStore& drag, const JointStore& joints, const StepContext& context,
                      const WorldDef& settings);
 
+    /// Room for `bodyCount` bodies in every buffer below (each holds at most one entry per
+    /// body), so that no step allocates in them until bodies are added.
+    void reserve(std::size_t bodyCount);
+
     /// Where sleep and wake events go (the world's pending log); none when null.
     EventLog* events = nullptr;
 

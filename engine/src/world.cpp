@@ -295,6 +295,7 @@ StepStatus World::step() {
     w.runPreStep(*this);  // application time, not the engine's: before the clock starts
     const Clock::time_point start = Clock::now();
     w.profile = {};
+    w.reserveForBodies();
     if (w.springs.count() > 0)
         wakeSpringLinked(w.springs, w.bodies, w.contacts, w.islands);
     if (w.joints.count() > 0)

@@ -164,6 +164,19 @@ struct World::Impl {
     // Calls the application's pre-step callback, if any (world_control.cpp).
     void runPreStep(World& world);
 
+    // Storage a step fills with at most one entry per body -- the awake list, the islands' walks
+    // and union-find, the sleep events -- holds the body count before the step needs it, so it
+    // grows when bodies are added, never in a warm step where one first falls asleep or wakes.
+    // In a step a body wakes at most once and falls asleep at most once, after (the sleep stage
+    // runs last): two sleep events; the API's own events before the step come on top.
+    void reserveForBodies() {
+        const std::size_t n = bodies.count();
+        bodies.awake.reserve(n);
+        islands.reserve(n);
+        pendingEvents.sleep.reserve(pendingEvents.sleep.size() + 2 * n);
+        events.sleep.reserve(2 * n);  // pending after the swap
+    }
+
     // The events of the step just taken, and of the API calls before it, become readable.
     void publishEvents() {
         events.swap(pendingEvents);
@@ -192,6 +205,7 @@ struct World::Impl {
     // step's start of the bodies woken in the last one (still at rest in previousMotion) is
     // kept in stepStart.
     void beginSubstep() {
+        stepStart.reserve(bodies.count());  // the awake list may grow to it: see reserveForBodies
         stepStart.resize(bodies.awake.size());
         for (std::size_t k = stepStartCount; k < bodies.awake.size(); ++k)
             stepStart[k] = bodies.previousMotion[bodies.awake[k]];
