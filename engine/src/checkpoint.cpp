@@ -561,6 +561,8 @@ struct CheckpointAccess {
             r.corrupt("time step ", w.settings.timeStep);
         if (w.settings.substeps < 1)
             r.corrupt("substeps ", w.settings.substeps);
+        if (w.settings.substeps > 1 && w.settings.solver.softSubsteps > 0)
+            r.corrupt("substeps ", w.settings.substeps, " with soft substeps");
         try {
             checkSolverSettings(w.settings.solver);  // a soft step of -1 substeps, a NaN hertz
         } catch (const InvalidArgument& e) {

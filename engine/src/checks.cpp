@@ -156,6 +156,17 @@ void timeStep(Real h, std::string_view what) {
         fail(what, " = ", h, " (s) must be finite and > 0");
 }
 
+// Both counts would compound (each of the step's substeps a soft step of its own substeps, so
+// h / (substeps softSubsteps) where either field asked for its own), so a world takes one.
+void substepCounts(int substeps, int softSubsteps, std::string_view where) {
+    if (substeps > 1 && softSubsteps > 0) {
+        fail(where, ": WorldDef.substeps = ", substeps,
+             " with WorldDef.solver.softSubsteps = ", softSubsteps,
+             ": one count of substeps per step; the soft step's is softSubsteps (set substeps = 1) "
+             "and the default step's substeps (set softSubsteps = 0)");
+    }
+}
+
 void worldDef(const WorldDef& def) {
     finiteVector(def.gravity, "WorldDef.gravity");
     timeStep(def.timeStep, "WorldDef.timeStep");
@@ -167,6 +178,7 @@ void worldDef(const WorldDef& def) {
     }
     if (def.substeps < 1)
         fail("WorldDef.substeps = ", def.substeps, " must be >= 1");
+    substepCounts(def.substeps, def.solver.softSubsteps, "World");
     if (!(std::isfinite(def.linearSleepVelocity) && def.linearSleepVelocity >= 0)) {
         fail("WorldDef.linearSleepVelocity = ", def.linearSleepVelocity,
              " (m/s) must be finite and >= 0");

@@ -22,5 +22,8 @@ void material(const Material& m, std::string_view what);
 void shapeDef(const ShapeDef& def, BodyType bodyType);
 void timeStep(Real h, std::string_view what);
 void worldDef(const WorldDef& def);
+/// WorldDef::substeps > 1 with SolverSettings::softSubsteps > 0 is refused: one count of substeps
+/// per step, either the default step's or the soft step's. `where` names the call.
+void substepCounts(int substeps, int softSubsteps, std::string_view where);
 
 }  // namespace tumble::checks

@@ -467,6 +467,7 @@ const SolverStats& World::solverStats() const {
 
 void World::setSolverSettings(const SolverSettings& settings) {
     checkSolverSettings(settings);
+    checks::substepCounts(impl_->settings.substeps, settings.softSubsteps, "setSolverSettings");
     impl_->settings.solver = settings;
 }
 

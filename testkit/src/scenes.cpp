@@ -27,10 +27,13 @@ void applyForcedSoftStep(SolverSettings& settings) {
 }
 
 void applyStep(SolverSettings& settings, const StepChoice& step) {
-    if (step.softSubsteps == 0)
-        return;
     settings.softSubsteps = step.softSubsteps;
-    settings.contactHertz = step.contactHertz;
+    if (step.softSubsteps > 0)
+        settings.contactHertz = step.contactHertz;
+}
+
+int integratorStepsPerStep(const StepChoice& step) {
+    return std::max(1, step.softSubsteps);
 }
 
 std::string stepName(const StepChoice& step) {

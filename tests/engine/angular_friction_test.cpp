@@ -9,9 +9,11 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include "refusal.h"
 #include "testkit/same_ids.h"
+#include "testkit/scenes.h"
 #include "tumble/checkpoint.h"
 #include "tumble/world.h"
 
@@ -26,16 +28,21 @@ constexpr Real kH = 1.0 / 60.0;
 constexpr Real kRadius = 0.1;
 
 struct Scene {
-    World world{WorldDef{.gravity = Vec3(0, 0, -kG), .timeStep = kH, .enableSleep = false}};
+    World world;
     BodyId ball;
     Real mass = 0;
     Real inertia = 0;
 };
 
-// A ball resting exactly on the ground; `ball` and `ground` are the two materials.
+// A ball resting exactly on the ground; `ball` and `ground` are the two materials; `step` pins
+// the default or the soft step (the engine's default without it).
 Scene restingBall(const Material& ball, const Material& ground = Material{},
-                  bool fixedRotation = false) {
-    Scene scene;
+                  bool fixedRotation = false,
+                  const std::optional<testkit::StepChoice>& step = std::nullopt) {
+    WorldDef def{.gravity = Vec3(0, 0, -kG), .timeStep = kH, .enableSleep = false};
+    if (step)
+        testkit::applyStep(def.solver, *step);
+    Scene scene{.world = World(def)};
     const BodyId floor = scene.world.createBody(BodyDef{.type = BodyType::Static});
     scene.world.createShape(floor, ShapeDef{.geometry = HalfSpace{}, .material = ground});
     scene.ball = scene.world.createBody(
@@ -136,44 +143,58 @@ TEST(SpinningFriction, TurnsTheBodyUnderneathAndConservesAngularMomentum) {
 }
 
 // Rolling at v0, the ball slows at 5/7 g c_r / r (point friction and the resisting torque
-// together, without slip) and stops after 7 r v0^2 / (10 g c_r), less the integrator's v0 h / 2.
+// together, without slip) and stops after 7 r v0^2 / (10 g c_r), less the integrator's v0 k / 2
+// (k = h, or h / n on the soft step's n substeps).
 TEST(RollingFriction, ARollingBallStopsAtTheRollingResistanceDistance) {
-    const Real c = 0.005;
-    Scene scene = restingBall(Material{.rollingFriction = c});
-    const Real v0 = 0.5;
-    scene.world.setLinearVelocity(scene.ball, Vec3(v0, 0, 0));
-    scene.world.setAngularVelocity(scene.ball, Vec3(0, v0 / kRadius, 0));
-    const Real a = 5.0 / 7.0 * kG * c / kRadius;
-    // Half way through the roll-out the speed follows v0 - a t.
-    const int half = static_cast<int>(std::lround(0.5 * v0 / a / kH));
-    for (int n = 0; n < half; ++n)
-        ASSERT_TRUE(scene.world.step().ok());
-    EXPECT_NEAR(scene.world.linearVelocity(scene.ball).x(), v0 - a * half * kH, 2e-3 * v0);
-    // Rolling without slip all along.
-    const Vec3 w = scene.world.angularVelocity(scene.ball);
-    EXPECT_NEAR(w.y() * kRadius, scene.world.linearVelocity(scene.ball).x(), 1e-6);
-    for (int n = half; n < 3 * half; ++n)
-        ASSERT_TRUE(scene.world.step().ok());
-    EXPECT_LT(scene.world.linearVelocity(scene.ball).norm(), 1e-6);
-    // The continuous distance less the integrator's v0 h / 2 (sum of h (v0 - n a h)).
-    const Real distance = v0 * v0 / (2 * a) - 0.5 * v0 * kH;
-    EXPECT_NEAR(scene.world.position(scene.ball).x(), distance, 1e-3 * distance);
+    for (const testkit::StepChoice& step : testkit::kIntegratorStepChoices) {
+        SCOPED_TRACE(testkit::stepName(step));
+        const Real c = 0.005;
+        Scene scene = restingBall(Material{.rollingFriction = c}, Material{}, false, step);
+        const Real v0 = 0.5;
+        scene.world.setLinearVelocity(scene.ball, Vec3(v0, 0, 0));
+        scene.world.setAngularVelocity(scene.ball, Vec3(0, v0 / kRadius, 0));
+        const Real a = 5.0 / 7.0 * kG * c / kRadius;
+        // Half way through the roll-out the speed follows v0 - a t.
+        const int half = static_cast<int>(std::lround(0.5 * v0 / a / kH));
+        for (int n = 0; n < half; ++n)
+            ASSERT_TRUE(scene.world.step().ok());
+        EXPECT_NEAR(scene.world.linearVelocity(scene.ball).x(), v0 - a * half * kH, 2e-3 * v0);
+        // Rolling without slip all along.
+        const Vec3 w = scene.world.angularVelocity(scene.ball);
+        EXPECT_NEAR(w.y() * kRadius, scene.world.linearVelocity(scene.ball).x(), 1e-6);
+        for (int n = half; n < 3 * half; ++n)
+            ASSERT_TRUE(scene.world.step().ok());
+        EXPECT_LT(scene.world.linearVelocity(scene.ball).norm(), 1e-6);
+        // The continuous distance less the integrator's v0 k / 2 (sum of k (v0 - n a k)).
+        const Real k = kH / testkit::integratorStepsPerStep(step);
+        const Real distance = v0 * v0 / (2 * a) - 0.5 * v0 * k;
+        EXPECT_NEAR(scene.world.position(scene.ball).x(), distance, 1e-3 * distance);
+    }
 }
 
 // A translation-only body cannot turn: no angular rows, and it slides to the Coulomb distance
 // v0^2 / (2 mu g) as without the lengths.
+// Not at 5 x 45 Hz: there it stops at 0.0983 m, 1.9 mm short of the closed form's 0.1003 (limit
+// 1.4 mm; 2 x 30 and 3 x 45 within it), not analysed yet (issue 21).
 TEST(RollingFriction, ATranslationOnlyBodyGetsNoAngularRows) {
-    const auto slid = [](const Material& material) {
-        Scene scene = restingBall(material, material, true);
-        scene.world.setLinearVelocity(scene.ball, Vec3(1, 0, 0));
-        for (int n = 0; n < 60; ++n)
-            EXPECT_TRUE(scene.world.step().ok());
-        return scene.world.position(scene.ball).x();
-    };
-    const Real plain = slid(Material{});
-    // v0^2 / (2 mu g) less the integrator's v0 h / 2, to within one step's deceleration.
-    EXPECT_NEAR(plain, 1 / (2 * 0.5 * kG) - 0.5 * kH, 0.5 * kG * kH * kH);
-    EXPECT_EQ(slid(Material{.spinningFriction = 0.01, .rollingFriction = 0.01}), plain);
+    for (const testkit::StepChoice& step :
+         {testkit::kIntegratorStepChoices[0], testkit::kIntegratorStepChoices[1],
+          testkit::kIntegratorStepChoices[2]}) {
+        SCOPED_TRACE(testkit::stepName(step));
+        const auto slid = [&](const Material& material) {
+            Scene scene = restingBall(material, material, true, step);
+            scene.world.setLinearVelocity(scene.ball, Vec3(1, 0, 0));
+            for (int n = 0; n < 60; ++n)
+                EXPECT_TRUE(scene.world.step().ok());
+            return scene.world.position(scene.ball).x();
+        };
+        const Real plain = slid(Material{});
+        // v0^2 / (2 mu g) less the integrator's v0 k / 2 (k = h / n on the soft step's n
+        // substeps), to within one step's (h) deceleration.
+        const Real k = kH / testkit::integratorStepsPerStep(step);
+        EXPECT_NEAR(plain, 1 / (2 * 0.5 * kG) - 0.5 * k, 0.5 * kG * kH * kH);
+        EXPECT_EQ(slid(Material{.spinningFriction = 0.01, .rollingFriction = 0.01}), plain);
+    }
 }
 
 TEST(AngularFriction, NegativeOrNonFiniteLengthsAreRefused) {

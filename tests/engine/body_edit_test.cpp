@@ -4,10 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 #include <vector>
 
 #include "refusal.h"
+#include "testkit/scenes.h"
 #include "tumble/world.h"
 
 namespace tumble {
@@ -192,18 +194,29 @@ TEST(SetShapeFilter, AMaskThatExcludesTheFloorLetsTheBoxFallThrough) {
 
 // --- damping and user data --------------------------------------------------------------------
 
+// v /= 1 + c k at each of the integrator's steps k (h, or h / n on the soft step's n substeps).
 TEST(SetDamping, ActsFromTheNextStepAndBadValuesAreRefusedByName) {
+    for (const testkit::StepChoice& step : testkit::kIntegratorStepChoices) {
+        SCOPED_TRACE(testkit::stepName(step));
+        WorldDef def{.gravity = Vec3::Zero()};
+        testkit::applyStep(def.solver, step);
+        World world(def);
+        const BodyId body = world.createBody({});
+        world.setLinearVelocity(body, Vec3(1, 0, 0));
+        world.setAngularVelocity(body, Vec3(0, 0, 1));
+        world.setLinearDamping(body, 2);
+        world.setAngularDamping(body, 3);
+        EXPECT_EQ(world.linearDamping(body), 2);
+        EXPECT_EQ(world.angularDamping(body), 3);
+        ASSERT_TRUE(world.step().ok());
+        const int n = testkit::integratorStepsPerStep(step);
+        const Real k = kH / n;
+        EXPECT_NEAR(world.linearVelocity(body).x(), std::pow(1 + k * 2, -n), 1e-12);
+        EXPECT_NEAR(world.angularVelocity(body).z(), std::pow(1 + k * 3, -n), 1e-12);
+    }
     World world(WorldDef{.gravity = Vec3::Zero()});
     const BodyId body = world.createBody({});
-    world.setLinearVelocity(body, Vec3(1, 0, 0));
-    world.setAngularVelocity(body, Vec3(0, 0, 1));
     world.setLinearDamping(body, 2);
-    world.setAngularDamping(body, 3);
-    EXPECT_EQ(world.linearDamping(body), 2);
-    EXPECT_EQ(world.angularDamping(body), 3);
-    ASSERT_TRUE(world.step().ok());
-    EXPECT_NEAR(world.linearVelocity(body).x(), 1 / (1 + kH * 2), 1e-12);  // v /= 1 + h c
-    EXPECT_NEAR(world.angularVelocity(body).z(), 1 / (1 + kH * 3), 1e-12);
     EXPECT_TRUE(contains(refusal([&] { world.setLinearDamping(body, -1); }),
                          "setLinearDamping damping (1/s) = -1 must be finite and >= 0"));
     EXPECT_TRUE(contains(

@@ -125,10 +125,13 @@ TEST(GoldenTrajectory, TheScalarSweepMatchesTheCommittedHashes) {
 
 // The soft step's sweeps on the coloured rows (the default) and on the scalar rows: the same
 // order per body, so the same bits. The contact scenes leave the default step's trajectory (the
-// soft step ran); the net and the pendulum have springs or joints, which keep the default step.
+// soft step ran); the net has springs, which keep the default step. The pendulum asks for the
+// default step's substeps, which a world takes without the soft step's (one count).
 TEST(GoldenTrajectory, TheSoftStepIsTheSameOnBothSweeps) {
     const auto golden = readGolden();
     for (const GoldenCase& c : kCases) {
+        if (cli::loadScene(c.scene, {}, cli::sceneDirectory()).world.substeps > 1)
+            continue;
         const std::uint64_t coloured = trajectoryHash(c, false, 4);
         EXPECT_EQ(coloured, trajectoryHash(c, true, 4)) << c.scene;
         const bool soft = c.scene == std::string("pyramid") || c.scene == std::string("rain");

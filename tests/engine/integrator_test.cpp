@@ -5,25 +5,35 @@
 #include <cmath>
 #include <numbers>
 
+#include "testkit/scenes.h"
 #include "tumble/world.h"
 
 namespace tumble {
 namespace {
 
+// Velocities first, then positions from the new velocities, at the integrator's step k: h on the
+// default step, h / n on the soft step's n substeps.
 TEST(Integrator, FreeFallFollowsSemiImplicitEulerClosedForm) {
-    World world;
-    BodyDef def;
-    def.linearVelocity = Vec3(1, 0, 3);
-    const BodyId body = world.createBody(def);
-    const Real h = world.settings().timeStep;
-    const Vec3 g = world.settings().gravity;
-    const int n = 90;
-    for (int i = 0; i < n; ++i)
-        world.step();
-    // Velocities first, then positions from the new velocities.
-    const Vec3 expected = n * h * def.linearVelocity + h * h * g * (n * (n + 1.0) / 2);
-    EXPECT_NEAR((world.position(body) - expected).norm(), 0, 1e-13);
-    EXPECT_NEAR((world.linearVelocity(body) - (def.linearVelocity + n * h * g)).norm(), 0, 1e-13);
+    for (const testkit::StepChoice& step : testkit::kIntegratorStepChoices) {
+        SCOPED_TRACE(testkit::stepName(step));
+        WorldDef worldDef;
+        testkit::applyStep(worldDef.solver, step);
+        World world(worldDef);
+        BodyDef def;
+        def.linearVelocity = Vec3(1, 0, 3);
+        const BodyId body = world.createBody(def);
+        const Vec3 g = world.settings().gravity;
+        const int steps = 90;
+        for (int i = 0; i < steps; ++i)
+            world.step();
+        const int perStep = testkit::integratorStepsPerStep(step);
+        const Real k = world.settings().timeStep / perStep;
+        const int n = steps * perStep;
+        const Vec3 expected = n * k * def.linearVelocity + k * k * g * (n * (n + 1.0) / 2);
+        EXPECT_NEAR((world.position(body) - expected).norm(), 0, 1e-13);
+        EXPECT_NEAR((world.linearVelocity(body) - (def.linearVelocity + n * k * g)).norm(), 0,
+                    1e-13);
+    }
 }
 
 TEST(Integrator, ConstantSpinRotatesByExactlyOmegaT) {

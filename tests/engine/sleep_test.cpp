@@ -213,28 +213,41 @@ TEST(Sleep, ApiChangesWakeTheBody) {
 }
 
 // A woken body answers a push as if it had never slept: sliding friction mu m g against twice
-// that, a = mu g, x_n = a h^2 n (n + 1) / 2 under semi-implicit Euler.
+// that, a = mu g, under semi-implicit Euler at the integrator's step k = h / n (n = 1 on the
+// default step, the soft step's substeps else). The push's impulse h F comes in the first of
+// the n (the soft step's applied forces), the friction's mu m g k in each, so a step maps
+// v' = v + a h and x' = x + h v + 2 a h^2 - a k^2 n (n + 1) / 2: after S steps from rest
+// v = a h S, x = a h^2 S (S - 1) / 2 + S (2 a h^2 - a k^2 n (n + 1) / 2), for n = 1 the
+// familiar a h^2 S (S + 1) / 2.
 TEST(Sleep, PushedBodyMovesAfterWaking) {
-    World world;
-    addGround(world);
-    const BodyId box = addBox(world, Vec3(0, 0, 0.5));
-    ASSERT_GT(stepUntilAsleep(world, box, 300), 0);
-    const Real x0 = world.position(box).x();
-    const Real mu = 0.5;
-    const Real push = 2 * mu * world.massProperties(box).mass * 9.81;
-    const int steps = 30;
-    for (int i = 0; i < steps; ++i) {
-        world.applyForceToCenter(box, Vec3(push, 0, 0));
-        ASSERT_TRUE(world.step().ok());
-        EXPECT_TRUE(world.isAwake(box));
+    for (const testkit::StepChoice& step : testkit::kIntegratorStepChoices) {
+        SCOPED_TRACE(testkit::stepName(step));
+        WorldDef def;
+        testkit::applyStep(def.solver, step);
+        World world(def);
+        addGround(world);
+        const BodyId box = addBox(world, Vec3(0, 0, 0.5));
+        ASSERT_GT(stepUntilAsleep(world, box, 300), 0);
+        const Real x0 = world.position(box).x();
+        const Real mu = 0.5;
+        const Real push = 2 * mu * world.massProperties(box).mass * 9.81;
+        const int steps = 30;
+        for (int i = 0; i < steps; ++i) {
+            world.applyForceToCenter(box, Vec3(push, 0, 0));
+            ASSERT_TRUE(world.step().ok());
+            EXPECT_TRUE(world.isAwake(box));
+        }
+        const Real h = world.settings().timeStep;
+        const int n = testkit::integratorStepsPerStep(step);
+        const Real k = h / n;
+        const Real a = mu * 9.81;
+        // To the solver's convergence (PGS at a fixed budget), 1e-6 relative.
+        const Real v = a * steps * h;
+        const Real x = a * h * h * steps * (steps - 1) / 2 +
+                       steps * (2 * a * h * h - a * k * k * n * (n + 1) / 2);
+        EXPECT_NEAR(world.linearVelocity(box).x(), v, 1e-6 * v);
+        EXPECT_NEAR(world.position(box).x() - x0, x, 1e-6 * x);
     }
-    const Real h = world.settings().timeStep;
-    const Real a = mu * 9.81;
-    // To the solver's convergence (PGS at a fixed budget), 1e-6 relative.
-    const Real v = a * steps * h;
-    const Real x = a * h * h * steps * (steps + 1) / 2;
-    EXPECT_NEAR(world.linearVelocity(box).x(), v, 1e-6 * v);
-    EXPECT_NEAR(world.position(box).x() - x0, x, 1e-6 * x);
 }
 
 // A unit cube resting on the ground at the origin that may not sleep.

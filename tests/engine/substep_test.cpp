@@ -26,34 +26,48 @@ constexpr Real kGravity = 9.81;
 // Semi-implicit Euler with step k from rest at z0: v_j = v_{j-1} - g k, z_j = z_{j-1} + k v_j,
 // so v_n = -n g k and z_n = z0 - g k^2 (1 + 2 + ... + n) = z0 - g k^2 n (n + 1) / 2. S steps of
 // h with N substeps are n = N S steps of k = h / N: z = z0 - g h^2 S (N S + 1) / (2 N), which
-// for N = 4 differs from N = 1 by 3 g h^2 S / 8 (31 mm for h = 1/60 and S = 30).
+// for N = 4 differs from N = 1 by 3 g h^2 S / 8 (31 mm for h = 1/60 and S = 30). Either step's
+// count: the default step's four substeps (WorldDef::substeps) or the soft step's
+// (SolverSettings::softSubsteps, 4 x 60 Hz), which a world takes one at a time.
 TEST(Substeps, FreeFallLandsWhereFourEulerSubstepsPerStepPutIt) {
     constexpr Real h = 1.0 / 60;
     constexpr int kSubsteps = 4;
     constexpr int kSteps = 30;
     constexpr Real z0 = 10;
-    World world(WorldDef{.gravity = Vec3(0, 0, -kGravity), .timeStep = h, .substeps = kSubsteps});
-    BodyDef def;
-    def.position = Vec3(0, 0, z0);
-    const BodyId body = world.createBody(def);
-    world.createShape(body, ShapeDef{.geometry = Sphere{0.5}});
-    const Real k = h / kSubsteps;
-    const auto height = [&](int substeps) {
-        return z0 - kGravity * k * k * substeps * (substeps + 1) / 2;
-    };
-    for (int s = 1; s <= kSteps; ++s) {
-        ASSERT_TRUE(world.step().ok());
-        const int n = kSubsteps * s;
-        EXPECT_NEAR(world.position(body).z(), height(n), 1e-12) << "step " << s;
-        EXPECT_NEAR(world.linearVelocity(body).z(), -n * kGravity * k, 1e-12) << "step " << s;
-        // Interpolation spans the whole step: fraction 0 is where the step began.
-        EXPECT_NEAR(world.interpolatedTransform(body, 0).position.z(), height(n - kSubsteps), 1e-12)
-            << "step " << s;
+    const WorldDef fall{.gravity = Vec3(0, 0, -kGravity), .timeStep = h};
+    WorldDef stepped = fall;
+    stepped.substeps = kSubsteps;
+    stepped.solver.softSubsteps = 0;
+    WorldDef soft = fall;
+    soft.substeps = 1;
+    soft.solver.softSubsteps = kSubsteps;
+    soft.solver.contactHertz = 60;
+    for (const WorldDef& worldDef : {stepped, soft}) {
+        SCOPED_TRACE(worldDef.solver.softSubsteps == 0 ? "default step" : "soft step");
+        World world(worldDef);
+        BodyDef def;
+        def.position = Vec3(0, 0, z0);
+        const BodyId body = world.createBody(def);
+        world.createShape(body, ShapeDef{.geometry = Sphere{0.5}});
+        const Real k = h / kSubsteps;
+        const auto height = [&](int substeps) {
+            return z0 - kGravity * k * k * substeps * (substeps + 1) / 2;
+        };
+        for (int s = 1; s <= kSteps; ++s) {
+            ASSERT_TRUE(world.step().ok());
+            const int n = kSubsteps * s;
+            EXPECT_NEAR(world.position(body).z(), height(n), 1e-12) << "step " << s;
+            EXPECT_NEAR(world.linearVelocity(body).z(), -n * kGravity * k, 1e-12) << "step " << s;
+            // Interpolation spans the whole step: fraction 0 is where the step began.
+            EXPECT_NEAR(world.interpolatedTransform(body, 0).position.z(), height(n - kSubsteps),
+                        1e-12)
+                << "step " << s;
+        }
+        const Real oneSubstep = z0 - kGravity * h * h * kSteps * (kSteps + 1) / 2;
+        EXPECT_GT(std::abs(world.position(body).z() - oneSubstep), 0.03);
+        EXPECT_EQ(world.stepCount(), static_cast<std::uint64_t>(kSteps));
+        EXPECT_NEAR(world.time(), kSteps * h, 1e-12);
     }
-    const Real oneSubstep = z0 - kGravity * h * h * kSteps * (kSteps + 1) / 2;
-    EXPECT_GT(std::abs(world.position(body).z() - oneSubstep), 0.03);
-    EXPECT_EQ(world.stepCount(), static_cast<std::uint64_t>(kSteps));
-    EXPECT_NEAR(world.time(), kSteps * h, 1e-12);
 }
 
 // A 1 kg point-like bob on a 1 m ball joint, released horizontal: the largest deviation of
@@ -62,6 +76,7 @@ Real pendulumEnergyDrift(int substeps) {
     World world(WorldDef{.gravity = Vec3(0, 0, -kGravity),
                          .timeStep = 1.0 / 60,
                          .substeps = substeps,
+                         .solver = SolverSettings{.softSubsteps = 0},
                          .enableSleep = false});
     BodyDef def;
     def.position = Vec3(1, 0, 0);
@@ -99,10 +114,36 @@ TEST(Substeps, ZeroOrNegativeCountsAreRefused) {
     }
 }
 
+// One count of substeps per step: the soft step's (softSubsteps) or the default step's
+// (substeps), never both compounded; the World and setSolverSettings name the two fields.
+TEST(Substeps, BesideTheSoftStepOnlyOneIsRefusedByName) {
+    const std::string expected =
+        ": WorldDef.substeps = 4 with WorldDef.solver.softSubsteps = 3: one count of substeps per "
+        "step";
+    EXPECT_TRUE(contains(refusal([] {
+                             World world(WorldDef{.substeps = 4,
+                                                  .solver = SolverSettings{.softSubsteps = 3}});
+                         }),
+                         "World" + expected));
+    World stepped(WorldDef{.substeps = 4, .solver = SolverSettings{.softSubsteps = 0}});
+    EXPECT_TRUE(
+        contains(refusal([&] { stepped.setSolverSettings(SolverSettings{.softSubsteps = 3}); }),
+                 "setSolverSettings" + expected));
+    EXPECT_EQ(stepped.settings().solver.softSubsteps, 0);
+    // Either count alone is taken.
+    World soft(WorldDef{.substeps = 1, .solver = SolverSettings{.softSubsteps = 3}});
+    EXPECT_EQ(soft.settings().solver.softSubsteps, 3);
+    stepped.setSolverSettings(SolverSettings{.softSubsteps = 0, .contactHertz = 45});
+    EXPECT_EQ(stepped.settings().solver.contactHertz, 45);
+}
+
 // A ball dropped onto the ground with four substeps: the contact begins in some substep of one
 // step and stays; it is reported once, and so is the impact.
 TEST(Substeps, AContactBeginningInASubstepIsReportedOnce) {
-    World world(WorldDef{.gravity = Vec3(0, 0, -kGravity), .timeStep = 1.0 / 60, .substeps = 4});
+    World world(WorldDef{.gravity = Vec3(0, 0, -kGravity),
+                         .timeStep = 1.0 / 60,
+                         .substeps = 4,
+                         .solver = SolverSettings{.softSubsteps = 0}});
     const BodyId ground = world.createBody(BodyDef{.type = BodyType::Static});
     world.createShape(ground, ShapeDef{.geometry = HalfSpace{}});
     BodyDef def;
@@ -127,7 +168,10 @@ TEST(Substeps, AContactBeginningInASubstepIsReportedOnce) {
 // fails in its second substep and must leave every body as it was before the step, including a
 // second body that the first substep moved.
 TEST(Substeps, AFailingSubstepRestoresTheStateBeforeTheStep) {
-    World world(WorldDef{.gravity = Vec3(0, 0, -kGravity), .timeStep = 4, .substeps = 4});
+    World world(WorldDef{.gravity = Vec3(0, 0, -kGravity),
+                         .timeStep = 4,
+                         .substeps = 4,
+                         .solver = SolverSettings{.softSubsteps = 0}});
     BodyDef def;
     def.mass.mass = 1;
     def.mass.inertia = Mat3::Identity();
@@ -157,7 +201,9 @@ TEST(Substeps, AFailingSubstepRestoresTheStateBeforeTheStep) {
 // part of the step, and with substeps each is summed over them (so the solve stages of a
 // resting box, which has a contact in every substep, are all timed).
 TEST(Substeps, ProfileStagesArePartsOfTheStep) {
-    World world(WorldDef{.substeps = 4});
+    // The default step's substeps; the soft step, which takes no substeps and measures no
+    // residual, has its own (SoftStep.ProfileStagesArePartsOfTheStep, Profile::solveStages).
+    World world(WorldDef{.substeps = 4, .solver = SolverSettings{.softSubsteps = 0}});
     const BodyId ground = world.createBody(BodyDef{.type = BodyType::Static});
     world.createShape(ground, ShapeDef{.geometry = HalfSpace{}});
     const BodyId box = world.createBody(BodyDef{.position = Vec3(0, 0, 0.5)});

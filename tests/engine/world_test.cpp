@@ -2,11 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <numbers>
 #include <vector>
 
+#include "testkit/scenes.h"
 #include "tumble/core/error.h"
 
 namespace tumble {
@@ -124,15 +126,23 @@ TEST(World, OffsetCentreOfMassKeepsTheOriginAsThePose) {
     EXPECT_NEAR((world.position(body) - Vec3(1.5, 0.5, 0)).norm(), 0, 1e-12);
 }
 
+// v /= 1 + c k at each of the integrator's steps k: 1 / (1 + c h) on the default step,
+// (1 + c h / n)^-n on the soft step's n substeps.
 TEST(World, DampingDecaysVelocityImplicitly) {
-    World world(zeroGravity());
-    BodyDef def;
-    def.linearVelocity = Vec3(1, 0, 0);
-    def.linearDamping = 2;
-    const BodyId body = world.createBody(def);
-    const Real h = world.settings().timeStep;
-    world.step();
-    EXPECT_NEAR(world.linearVelocity(body).x(), 1 / (1 + 2 * h), 1e-15);
+    for (const testkit::StepChoice& step : testkit::kIntegratorStepChoices) {
+        SCOPED_TRACE(testkit::stepName(step));
+        WorldDef worldDef = zeroGravity();
+        testkit::applyStep(worldDef.solver, step);
+        World world(worldDef);
+        BodyDef def;
+        def.linearVelocity = Vec3(1, 0, 0);
+        def.linearDamping = 2;
+        const BodyId body = world.createBody(def);
+        const int n = testkit::integratorStepsPerStep(step);
+        const Real k = world.settings().timeStep / n;
+        world.step();
+        EXPECT_NEAR(world.linearVelocity(body).x(), std::pow(1 + 2 * k, -n), 1e-15);
+    }
 }
 
 TEST(World, NonFiniteStepIsReportedAndRolledBack) {

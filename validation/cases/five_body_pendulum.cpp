@@ -57,6 +57,7 @@ Drift swing(double seconds, int iterations, double h = 1.0 / 240.0, int substeps
     settings.gravity = Vec3(0, 0, -kGravity);
     settings.timeStep = h;
     settings.substeps = substeps;
+    settings.solver.softSubsteps = 0;  // jointed: the default step, whose count is substeps
     settings.enableSleep = false;
     settings.solver.iterations = iterations;
     settings.solver.relaxIterations = iterations;

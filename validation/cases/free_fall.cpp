@@ -4,11 +4,15 @@
 // Semi-implicit Euler with constant g:  v_n = v_0 + n h g,
 //   x_n = x_0 + h sum_{k=1..n} v_k = x_0 + n h v_0 + h^2 g n (n + 1) / 2,
 // while the parabola gives x_0 + t v_0 + g t^2 / 2 at t = n h: the difference is g t h / 2.
+// h is the integrator's step: the world's step on the default step, the step's over softSubsteps
+// on the soft step (tumble-validate --soft-step n), which integrates in n substeps.
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "../case.h"
+#include "scenes.h"
 #include "tumble/tumble.h"
 
 namespace tumble::validation {
@@ -25,17 +29,27 @@ struct Fall {
     double continuousError;  // |x - parabola| (m)
 };
 
+// The integrator's steps in one World::step: the soft step's substeps, else 1.
+int integratorStepsPerStep() {
+    SolverSettings settings;
+    testkit::applyForcedSoftStep(settings);
+    return std::max(1, settings.softSubsteps);
+}
+
 Fall fall(int stepsPerSecond) {
-    const double h = 1.0 / stepsPerSecond;
-    World world(WorldDef{.gravity = kGravity, .timeStep = h});
+    WorldDef worldDef{.gravity = kGravity, .timeStep = 1.0 / stepsPerSecond};
+    testkit::applyForcedSoftStep(worldDef.solver);  // tumble-validate --soft-step
+    World world(worldDef);
     BodyDef def;
     def.position = kStart;
     def.linearVelocity = kVelocity;
     const BodyId body = world.createBody(def);
-    const int n = static_cast<int>(std::lround(kDuration * stepsPerSecond));
-    for (int i = 0; i < n; ++i)
+    const int steps = static_cast<int>(std::lround(kDuration * stepsPerSecond));
+    for (int i = 0; i < steps; ++i)
         world.step();
 
+    const double h = 1.0 / (stepsPerSecond * integratorStepsPerStep());
+    const int n = steps * integratorStepsPerStep();
     const double t = n * h;
     const Vec3 discreteX = kStart + n * h * kVelocity + h * h * kGravity * (n * (n + 1.0) / 2);
     const Vec3 discreteV = kVelocity + n * h * kGravity;
@@ -58,7 +72,7 @@ CaseResult run(const CaseOptions&) {
     std::vector<double> hs, errors;
     for (int rate : {60, 120, 240, 480, 960}) {
         const Fall f = fall(rate);
-        const double h = 1.0 / rate;
+        const double h = 1.0 / (rate * integratorStepsPerStep());
         hs.push_back(h);
         errors.push_back(f.continuousError);
         // The O(h) error is known exactly: |g| t h / 2.

@@ -21,6 +21,9 @@ struct WorldDef {
     /// substeps, each running forces, collision, solve and integration. The pre-step callback,
     /// sleeping and the publication of events happen once per step. More substeps resolve fast
     /// motion (a whipping chain) that one step of h cannot, at the cost of a full step each.
+    /// The default step's count: with solver.softSubsteps > 0 the soft step substeps on its own
+    /// and only 1 is accepted (the World refuses both > 1, naming the two fields), so a world
+    /// integrates at h / substeps or h / softSubsteps, never their product.
     int substeps = 1;
     /// Speculative contact distance (m), >= 0: pairs closer than this plus the distance they can
     /// close in one step (h |v_rel|) get contact points, so fast bodies are stopped before they

@@ -40,8 +40,15 @@ struct StepChoice {
 /// The default step and the soft step at the settings its trade weighs (docs/ARCHITECTURE.md,
 /// "The soft step"): 3 x 45 Hz and 4 x 30 Hz.
 inline constexpr StepChoice kStepChoices[] = {{}, {3, 45}, {4, 30}};
-/// Puts `step` into `settings` (nothing for the default step).
+/// For closed forms of the integrator (free fall, damping, a constant push): the default step and
+/// the soft step at 2, 3 and 5 substeps, each at the hertz it caps at or below (a quarter of the
+/// substep rate at 60 Hz: 30, 45, 75).
+inline constexpr StepChoice kIntegratorStepChoices[] = {{}, {2, 30}, {3, 45}, {5, 45}};
+/// Puts `step` into `settings`: the default step pins softSubsteps = 0, whatever the default.
 void applyStep(SolverSettings& settings, const StepChoice& step);
+/// The integrator's steps in one World::step of `step` (WorldDef::substeps = 1): the soft step's
+/// substeps, else 1. Semi-implicit Euler's closed forms hold at h / this.
+int integratorStepsPerStep(const StepChoice& step);
 /// "Default" or "Soft<substeps>x<hertz>", for parameterised tests' names.
 std::string stepName(const StepChoice& step);
 

@@ -71,7 +71,8 @@ struct SolverSettings {
     /// per step and runs this many substeps of one soft biased sweep, the positions, and one
     /// rigid relax sweep, with gravity at h / softSubsteps, on the rows colouredContacts picks;
     /// iterations, relaxIterations and tolerance are then unused; anchors act once a step. 0
-    /// (default): the sweeps above. A world with springs or joints keeps the sweeps. >= 0.
+    /// (default): the sweeps above. A world with springs or joints keeps the sweeps. >= 0; > 0
+    /// only with WorldDef::substeps = 1 (one count of substeps per step; the World refuses both).
     int softSubsteps = 0;
     /// Soft step: natural frequency of a contact between two moving bodies (Hz), > 0; twice it
     /// against a static body; at most a quarter of the substep rate.
