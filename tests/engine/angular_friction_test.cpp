@@ -29,7 +29,7 @@ constexpr Real kRadius = 0.1;
 
 struct Scene {
     World world;
-    BodyId ball;
+    BodyId ball{};
     Real mass = 0;
     Real inertia = 0;
 };
