@@ -232,13 +232,21 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
         // (ContactSolver::softSweep), and those of a face whose patch slid (slide_patch.cpp).
         if (patches && soft)
             bundle.slidBiased = slid;
+        const bool relax = patches && !soft;  // the soft step's relax sweep
         unsigned held = soft ? slid : 0u;
         for (int lane = 0; soft && bundle.grouped && lane < bundle.laneCount; ++lane)
             held |= bundle.normals[lane] ? 0u : 1u << lane;
-        largestChange =
-            std::max(largestChange, held != 0 ? solveFrictionHolding(bundle, settings, v, held)
-                                              : solveFriction(bundle, settings, v));
-        const bool relax = patches && !soft;  // the soft step's relax sweep
+        // The relax sweep solves a lone point's friction after its normal row (SweepRows::sweep).
+        unsigned late = 0;
+        for (int lane = 0; relax && lane < bundle.laneCount; ++lane)
+            late |= bundle.points[lane] == 1 && bundle.normals[lane] ? 1u << lane : 0u;
+        held |= late;
+        const unsigned lanes = (1u << bundle.laneCount) - 1;
+        if (held != lanes) {
+            largestChange =
+                std::max(largestChange, held != 0 ? solveFrictionHolding(bundle, settings, v, held)
+                                                  : solveFriction(bundle, settings, v));
+        }
         if (bundle.angular && !relax) {
             scatter(bundle, v);
             largestChange = std::max(
@@ -248,8 +256,16 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
         largestChange = std::max(largestChange, solveNormals(bundle, constraints, factors, settings,
                                                              bias, inverseH, soft, v));
         if (relax) {
-            // solveNormals stored the velocities. The angular rows after the normal rows
-            // (ContactSolver::softSweep says why).
+            // solveNormals stored the velocities. The lone points' friction and the angular
+            // rows after the normal rows (ContactSolver::softSweep says why).
+            if (late != 0) {
+                gather(bundle, v);
+                largestChange = std::max(
+                    largestChange, late != lanes
+                                       ? solveFrictionHolding(bundle, settings, v, lanes & ~late)
+                                       : solveFriction(bundle, settings, v));
+                scatter(bundle, v);
+            }
             if (bundle.angular) {
                 largestChange = std::max(
                     largestChange, solveAngular(bundle, bodies, constraints, settings.relaxation));
