@@ -293,11 +293,11 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
         // last, matters more. The soft step's biased sweep leaves the friction of exactly
         // solved groups to its relax sweep (ContactSolver::softSweep says why).
         bool slid = false;
-        // The soft step's relax sweep solves a lone point's friction after its normal row, so
-        // its bound is the substep's whole normal impulse (ContactSolver::softSweep).
-        const bool frictionLast =
+        // The soft step's relax sweep solves a lone point's friction again after its normal
+        // row, so its bound is the substep's whole normal impulse (ContactSolver::softSweep).
+        const bool frictionAgain =
             Patches && softScales == nullptr && m.pointCount == 1 && !m.grouped;
-        if (m.friction > 0 && !(m.grouped && softScales != nullptr) && !frictionLast) {
+        if (m.friction > 0 && !(m.grouped && softScales != nullptr)) {
             if (Patches && m.pointCount > 1 && settings.friction == FrictionModel::Coupled &&
                 !patchSticks(a, b, m, points)) {
                 slid = onPatch(a, b, bodyA, bodyB, m, points,
@@ -333,7 +333,7 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
             solveNormals(a, b, m.normal, block, points, m.pointCount, factors[m.constraint],
                          settings, inverseH, bias, largestChange, softScale);
         }
-        if (frictionLast && m.friction > 0) {
+        if (frictionAgain && m.friction > 0) {
             largestChange = std::max(
                 largestChange, solveFriction(a, b, m, points, constraints[m.constraint], settings));
         }
