@@ -293,6 +293,10 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
         // last, matters more. The soft step's biased sweep leaves the friction of exactly
         // solved groups to its relax sweep (ContactSolver::softSweep says why).
         bool slid = false;
+        // The soft step's relax sweep solves a lone point's friction again after its normal
+        // row, so its bound is the substep's whole normal impulse (ContactSolver::softSweep).
+        const bool frictionAgain =
+            Patches && softScales == nullptr && m.pointCount == 1 && !m.grouped;
         if (m.friction > 0 && !(m.grouped && softScales != nullptr)) {
             if (Patches && m.pointCount > 1 && settings.friction == FrictionModel::Coupled &&
                 !patchSticks(a, b, m, points)) {
@@ -328,6 +332,10 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
                                         : softScales + (m.bodyA == 0 || m.bodyB == 0 ? 2 : 1);
             solveNormals(a, b, m.normal, block, points, m.pointCount, factors[m.constraint],
                          settings, inverseH, bias, largestChange, softScale);
+        }
+        if (frictionAgain && m.friction > 0) {
+            largestChange = std::max(
+                largestChange, solveFriction(a, b, m, points, constraints[m.constraint], settings));
         }
         if (m.angular && angularLast) {
             largestChange = std::max(largestChange, angularRows(a, b, bodyA, bodyB, m, points,

@@ -159,6 +159,11 @@ private:
     /// solveFriction with the lanes in `held` (bit per lane) left as they were (soft step).
     Real solveFrictionHolding(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6],
                               unsigned held);
+    /// The soft relax sweep's rows after its normal rows: the lanes of one point's friction
+    /// again, the angular rows, the slid patches settled.
+    Real relaxAfterNormals(Bundle& bundle, std::span<const SolverBody> bodies,
+                           std::span<ContactConstraint> constraints, const SolverSettings& settings,
+                           unsigned slid, Lane (&v)[2][6]);
     Real solveNormals(Bundle& bundle, std::span<ContactConstraint> constraints,
                       std::span<NormalFactor> factors, const SolverSettings& settings, Real bias,
                       Real inverseH, bool soft, Lane (&v)[2][6]);
