@@ -64,8 +64,7 @@ void integrateVelocity(BodyStore& bodies, std::uint32_t index, const StepContext
     // Angular part in body axes, where the inertia is constant.
     const Mat3 rotation = m.orientation.toRotationMatrix();
     Vec3 bodyOmega = rotation.transpose() * m.angularVelocity;
-    bodyOmega +=
-        (forceSteps * h) * (inertia.inverseInertiaLocal * (rotation.transpose() * forces.torque));
+    bodyOmega += (forceSteps * h) * torqueAcceleration(inertia, rotation, forces.torque);
     bodyOmega = gyroscopicMidpoint(inertia.inertiaLocal, inertia.inverseInertiaLocal, bodyOmega, h);
 
     // Implicit damping dv/dt = -c v: unconditionally stable, never reverses the velocity.

@@ -22,6 +22,13 @@ void integrateVelocities(BodyStore& bodies, const StepContext& context, Real for
 void integrateVelocity(BodyStore& bodies, std::uint32_t index, const StepContext& context,
                        Real forceSteps = 1);
 
+/// An applied torque's angular acceleration in body axes, I_body^-1 R' torque (rad/s^2): the one
+/// form integrateVelocity and the soft step's bounce prediction share (the same bits in both).
+inline Vec3 torqueAcceleration(const BodyInertia& inertia, const Mat3& rotation,
+                               const Vec3& torque) {
+    return inertia.inverseInertiaLocal * (rotation.transpose() * torque);
+}
+
 /// Moves every awake body with its velocity. Orientation: q(n+1) = exp(h w / 2) q(n), the
 /// exact rotation for a constant angular velocity over the step, then renormalised against
 /// rounding.

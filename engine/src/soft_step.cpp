@@ -252,7 +252,7 @@ void SolveStage::meanForcesChange(const BodyStore& bodies, Real beyond) {
             continue;
         const Mat3 rotation = bodies.motion[i].orientation.toRotationMatrix();
         softChange_[1 + b].angularVelocity -=
-            beyond * (rotation * (inertia.inverseInertiaLocal * (rotation.transpose() * f.torque)));
+            beyond * (rotation * torqueAcceleration(inertia, rotation, f.torque));
     }
 }
 
