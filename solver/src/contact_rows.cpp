@@ -226,7 +226,7 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
         gather(bundle, v);
         const unsigned slid =
             patches && bundle.maxPoints > 1 && settings.friction == FrictionModel::Coupled
-                ? slidePatches(bundle, bodies, settings, soft, v)
+                ? slidePatches(bundle, bodies, settings, soft, ~0u, v)
                 : 0u;
         // The biased sweep leaves the points' rows of exactly solved groups to the relax sweep
         // (ContactSolver::softSweep), and those of a face whose patch slid (slide_patch.cpp).
@@ -383,9 +383,9 @@ Real ContactRows::solveFrictionHolding(Bundle& bundle, const SolverSettings& set
 
 // The soft relax sweep after its normal rows (solveNormals stored the velocities): the lone
 // points' friction again (the lanes of one point whose normal rows it solves, the others held),
-// the angular rows, and the patches that slid settled (ContactSolver::softSweep says why). Out of
-// line: in ContactRows::sweep, the lanes' test took the default step's sweep 6-16 % more of its
-// own instructions (pyramid-20).
+// the angular rows, and the faces whose patch slid solved again (ContactSolver::softSweep,
+// slide_patch.cpp say why). Out of line: in ContactRows::sweep, the lanes' test took the default
+// step's sweep 6-16 % more of its own instructions (pyramid-20).
 [[gnu::noinline]] Real ContactRows::relaxAfterNormals(Bundle& bundle,
                                                       std::span<const SolverBody> bodies,
                                                       std::span<ContactConstraint> constraints,
@@ -406,9 +406,19 @@ Real ContactRows::solveFrictionHolding(Bundle& bundle, const SolverSettings& set
         largestChange =
             std::max(largestChange, solveAngular(bundle, bodies, constraints, settings.relaxation));
     }
-    if ((slid | bundle.slidBiased) != 0) {
+    // The faces whose patch slid in either sweep, solved again at these normals: their patch,
+    // then their points' rows (slide_patch.cpp says why).
+    unsigned again = 0;
+    for (int lane = 0; lane < bundle.laneCount; ++lane)
+        again |= bundle.normals[lane] ? (slid | bundle.slidBiased) & (1u << lane) : 0u;
+    if (again != 0) {
+        const unsigned lanes = (1u << bundle.laneCount) - 1;
         gather(bundle, v);
-        settlePatches(bundle, bodies, slid | bundle.slidBiased, v);
+        slidePatches(bundle, bodies, settings, false, again, v);
+        largestChange =
+            std::max(largestChange, again != lanes
+                                        ? solveFrictionHolding(bundle, settings, v, lanes & ~again)
+                                        : solveFriction(bundle, settings, v));
         scatter(bundle, v);
     }
     return largestChange;

@@ -9,7 +9,7 @@
 namespace tumble {
 
 // The soft step's patch of lane `lane`'s manifold (slide_patch.h), on the lanes' values:
-// `solve` (slidePatch or settlePatch) on them, kept when it returns true.
+// `solve` (slidePatch) on them, kept when it returns true.
 template <class Solve>
 bool ContactRows::onPatch(Bundle& bundle, int lane, std::span<const SolverBody> solverBodies,
                           Lane (&v)[2][6], Solve&& solve) {
@@ -113,12 +113,13 @@ TUMBLE_LANE_KERNEL unsigned ContactRows::stickingPatches(const Bundle& bundle,
 }
 
 unsigned ContactRows::slidePatches(Bundle& bundle, std::span<const SolverBody> solverBodies,
-                                   const SolverSettings& settings, bool soft, Lane (&v)[2][6]) {
+                                   const SolverSettings& settings, bool soft, unsigned only,
+                                   Lane (&v)[2][6]) {
     const unsigned sticking = stickingPatches(bundle, v);
     unsigned slid = 0;
     for (int lane = 0; lane < bundle.laneCount; ++lane) {
         if (bundle.points[lane] < 2 || (soft && !bundle.normals[lane]) ||
-            (sticking & (1u << lane)) != 0)
+            (only & (1u << lane)) == 0 || (sticking & (1u << lane)) != 0)
             continue;
         const bool on = onPatch(
             bundle, lane, solverBodies, v,
@@ -130,20 +131,6 @@ unsigned ContactRows::slidePatches(Bundle& bundle, std::span<const SolverBody> s
         slid |= on ? 1u << lane : 0u;
     }
     return slid;
-}
-
-void ContactRows::settlePatches(Bundle& bundle, std::span<const SolverBody> solverBodies,
-                                unsigned slid, Lane (&v)[2][6]) {
-    for (int lane = 0; lane < bundle.laneCount; ++lane) {
-        if ((slid & (1u << lane)) == 0 || !bundle.normals[lane])
-            continue;
-        onPatch(bundle, lane, solverBodies, v,
-                [](PatchBodies& bodies, const Vec3&, const std::array<Vec3, 2>& tangents,
-                   const std::array<Real, 2>&, Real, std::span<PatchPoint> patch) {
-                    settlePatch(bodies, tangents, true, patch);
-                    return true;
-                });
-    }
 }
 
 }  // namespace tumble

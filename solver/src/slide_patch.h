@@ -50,10 +50,4 @@ bool slidePatch(PatchBodies& bodies, const Vec3& normal, const std::array<Vec3, 
                 const std::array<Real, 2>& target, Real friction, Real omega,
                 std::span<PatchPoint> points);
 
-/// After the relax sweep's normal rows: when the patch slid in either sweep of the substep
-/// (`slid`), its friction split again by the normal impulses they left (the sum kept, so the
-/// bodies' momentum is).
-void settlePatch(PatchBodies& bodies, const std::array<Vec3, 2>& tangents, bool slid,
-                 std::span<PatchPoint> points);
-
 }  // namespace tumble

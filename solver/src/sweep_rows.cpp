@@ -111,7 +111,7 @@ Real solveFriction(SweepBody& a, SweepBody& b, const SweepManifold& m, SweepPoin
 }
 
 // The soft step's patch of a manifold of several points (slide_patch.h), on the sweep's copies:
-// `solve` (slidePatch or settlePatch) on them, kept when it returns true. Out of line: inlined,
+// `solve` (slidePatch) on them, kept when it returns true. Out of line: inlined,
 // it grew SweepRows::sweep until GCC called the normal rows' kernel out of line, +16 % on the
 // default step's sweeps (pile-1000), which never take a patch.
 template <class Solve>
@@ -341,16 +341,22 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
             largestChange = std::max(largestChange, angularRows(a, b, bodyA, bodyB, m, points,
                                                                 constraints, settings.relaxation));
         }
-        // Only a patch that slid is settled: the rest kept their bits through onPatch's copies
-        // (its gather on every face of several points was a fifth of the patch's cost).
+        // A face whose patch slid in either sweep of the substep is solved again at the relax
+        // sweep's normals (slide_patch.cpp says why): its patch, then its points' rows. Only such
+        // a face: the rest kept their bits (onPatch's gather on every face of several points was
+        // a fifth of the patch's cost).
         if (Patches && softScales == nullptr && !m.grouped && m.friction > 0 && m.pointCount > 1 &&
             settings.friction == FrictionModel::Coupled &&
             (slid || slidBiased_[&m - manifolds_.data()] != 0)) {
-            onPatch(a, b, bodyA, bodyB, m, points,
-                    [&](PatchBodies& on, std::span<PatchPoint> patch) {
-                        settlePatch(on, m.tangents(), true, patch);
-                        return true;
-                    });
+            if (!patchSticks(a, b, m, points)) {
+                onPatch(a, b, bodyA, bodyB, m, points,
+                        [&](PatchBodies& on, std::span<PatchPoint> patch) {
+                            return slidePatch(on, m.normal, m.tangents(), m.tangentTarget,
+                                              m.friction, settings.relaxation, patch);
+                        });
+            }
+            largestChange = std::max(
+                largestChange, solveFriction(a, b, m, points, constraints[m.constraint], settings));
         }
         a.store(bodyA);
         b.store(bodyB);

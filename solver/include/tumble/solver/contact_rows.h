@@ -142,17 +142,16 @@ private:
     void fill(Bundle& bundle, int lane, const ContactConstraint& c, std::uint32_t index, Real slop,
               Real inverseH);
     Real solveFriction(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6]);
-    /// The sliding patch (slide_patch.h) of each lane of several points, lane by lane; `soft`
-    /// leaves the lanes of exactly solved groups, as the biased sweep's friction does. Returns
-    /// the lanes that slid (bit per lane), which settlePatches reads after the relax sweep's
-    /// normal rows.
+    /// The sliding patch (slide_patch.h) of each lane of several points in `only` (bit per
+    /// lane), lane by lane; `soft` leaves the lanes of exactly solved groups, as the biased
+    /// sweep's friction does. Returns the lanes that slid (bit per lane), which the relax sweep
+    /// solves again after its normal rows.
     unsigned slidePatches(Bundle& bundle, std::span<const SolverBody> solverBodies,
-                          const SolverSettings& settings, bool soft, Lane (&v)[2][6]);
+                          const SolverSettings& settings, bool soft, unsigned only,
+                          Lane (&v)[2][6]);
     /// The lanes (bit per lane) whose patch surely sticks (patchSticks in slide_patch.h), which
     /// slidePatches leaves.
     unsigned stickingPatches(const Bundle& bundle, const Lane (&v)[2][6]) const;
-    void settlePatches(Bundle& bundle, std::span<const SolverBody> solverBodies, unsigned slid,
-                       Lane (&v)[2][6]);
     template <class Solve>
     bool onPatch(Bundle& bundle, int lane, std::span<const SolverBody> solverBodies,
                  Lane (&v)[2][6], Solve&& solve);
@@ -160,7 +159,7 @@ private:
     Real solveFrictionHolding(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6],
                               unsigned held);
     /// The soft relax sweep's rows after its normal rows: the lanes of one point's friction
-    /// again, the angular rows, the slid patches settled.
+    /// again, the angular rows, the faces whose patch slid solved again.
     Real relaxAfterNormals(Bundle& bundle, std::span<const SolverBody> bodies,
                            std::span<ContactConstraint> constraints, const SolverSettings& settings,
                            unsigned slid, Lane (&v)[2][6]);
