@@ -8,6 +8,7 @@
 
 #include "checkpoint_io.h"
 #include "checkpoint_surfaces.h"
+#include "checks.h"
 #include "tumble/solver/contact_solver.h"  // checkSolverSettings
 #include "world_impl.h"
 
@@ -561,7 +562,7 @@ struct CheckpointAccess {
             r.corrupt("time step ", w.settings.timeStep);
         if (w.settings.substeps < 1)
             r.corrupt("substeps ", w.settings.substeps);
-        if (w.settings.substeps > 1 && w.settings.solver.softSubsteps > 0)
+        if (checks::twoSubstepCounts(w.settings.substeps, w.settings.solver.softSubsteps))
             r.corrupt("substeps ", w.settings.substeps, " with soft substeps");
         try {
             checkSolverSettings(w.settings.solver);  // a soft step of -1 substeps, a NaN hertz

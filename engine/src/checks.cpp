@@ -159,7 +159,7 @@ void timeStep(Real h, std::string_view what) {
 // Both counts would compound (each of the step's substeps a soft step of its own substeps, so
 // h / (substeps softSubsteps) where either field asked for its own), so a world takes one.
 void substepCounts(int substeps, int softSubsteps, std::string_view where) {
-    if (substeps > 1 && softSubsteps > 0) {
+    if (twoSubstepCounts(substeps, softSubsteps)) {
         fail(where, ": WorldDef.substeps = ", substeps,
              " with WorldDef.solver.softSubsteps = ", softSubsteps,
              ": one count of substeps per step; the soft step's is softSubsteps (set substeps = 1) "

@@ -22,8 +22,13 @@ void material(const Material& m, std::string_view what);
 void shapeDef(const ShapeDef& def, BodyType bodyType);
 void timeStep(Real h, std::string_view what);
 void worldDef(const WorldDef& def);
-/// WorldDef::substeps > 1 with SolverSettings::softSubsteps > 0 is refused: one count of substeps
-/// per step, either the default step's or the soft step's. `where` names the call.
+/// Whether a world asks for two counts of substeps (WorldDef::substeps > 1 with
+/// SolverSettings::softSubsteps > 0), which it may not: one count per step, either the default
+/// step's or the soft step's. Shared by the checks below and a restored checkpoint's.
+constexpr bool twoSubstepCounts(int substeps, int softSubsteps) {
+    return substeps > 1 && softSubsteps > 0;
+}
+/// Refuses twoSubstepCounts; `where` names the call.
 void substepCounts(int substeps, int softSubsteps, std::string_view where);
 
 }  // namespace tumble::checks
