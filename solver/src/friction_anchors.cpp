@@ -75,14 +75,16 @@ Mat4 normalBlockInverse(const ContactConstraint& c) {
 // impulses of either sign: the face's normal block answers the tangential pull's moment with a
 // shift of load between its points, as the velocity solve does; one-sided, it would lift the
 // body off its inner points instead.
-void holdNormals(SolverBody& a, SolverBody& b, const ContactConstraint& c,
-                 std::span<const Vec3> rows, const Mat4& inverse) {
-    const int n = c.pointCount;
+template <int N>
+void holdNormals(SolverBody& a, SolverBody& b, const ContactConstraint& c, const Vec3* rows,
+                 const Mat4& inverse) {
     Vec4 gap = Vec4::Zero();
-    for (int i = 0; i < n; ++i)
+#pragma GCC unroll 4
+    for (int i = 0; i < N; ++i)
         gap(i) = normalSpeed(a, b, c.normal, c.points[i]) - rows[i].z();
     const Vec4 impulse = -(inverse * gap);
-    for (int i = 0; i < n; ++i)
+#pragma GCC unroll 4
+    for (int i = 0; i < N; ++i)
         applyNormal(a, b, c.normal, c.points[i], impulse(i));
 }
 
@@ -96,9 +98,11 @@ Vec3 pullOf(const Vec3& drift, Real inverseH, Real catchUp) {
 // One sweep over a manifold's friction rows: the sticking answer, clamped to the Coulomb disc
 // (a point that needs more lets its anchors go after the step, so the rim is not worth the
 // exact solve of the velocity sweeps).
+template <int N>
 void pullPoints(SolverBody& a, SolverBody& b, const ContactConstraint& c, const Vec3* pulls,
                 Vec3* rows) {
-    for (int i = 0; i < c.pointCount; ++i) {
+#pragma GCC unroll 4
+    for (int i = 0; i < N; ++i) {
         const ContactConstraintPoint& p = c.points[i];
         const Vec3 v = b.velocityAt(p.rB) - a.velocityAt(p.rA) + pulls[i];
         const Vec2 slip(c.tangents[0].dot(v), c.tangents[1].dot(v));
@@ -113,6 +117,17 @@ void pullPoints(SolverBody& a, SolverBody& b, const ContactConstraint& c, const 
         applyImpulse(b, impulse, p.rB);
         rows[i].head<2>() = next;
     }
+}
+
+// One sweep of the pass over a manifold of N points: its friction rows, then its normal block.
+// N is a template argument so that the points' loops unroll (the same operations in the same
+// order; the loop counters were a tenth of the pass).
+template <int N>
+void sweepManifold(SolverBody& a, SolverBody& b, const ContactConstraint& c, const Vec3* pulls,
+                   Vec3* rows, const Mat4& inverse) {
+    pullPoints<N>(a, b, c, pulls, rows);
+    if constexpr (N > 1)
+        holdNormals<N>(a, b, c, rows, inverse);
 }
 
 // The pass's arithmetic over its active manifolds: the normal speeds, pulls and normal block
@@ -138,10 +153,22 @@ TUMBLE_LANE_KERNEL void sweepAnchors(SolverBody* bodies, const ContactConstraint
             const ContactConstraint& c = constraints[active[k]];
             SolverBody& a = bodies[c.bodyA];
             SolverBody& b = bodies[c.bodyB];
-            pullPoints(a, b, c, &pulls[4 * k], &rows[4 * k]);
-            if (c.pointCount > 1)
-                holdNormals(a, b, c, std::span<const Vec3>(&rows[4 * k], c.pointCount),
-                            inverses[k]);
+            switch (c.pointCount) {
+                case 4:
+                    sweepManifold<4>(a, b, c, &pulls[4 * k], &rows[4 * k], inverses[k]);
+                    break;
+                case 3:
+                    sweepManifold<3>(a, b, c, &pulls[4 * k], &rows[4 * k], inverses[k]);
+                    break;
+                case 2:
+                    sweepManifold<2>(a, b, c, &pulls[4 * k], &rows[4 * k], inverses[k]);
+                    break;
+                case 1:
+                    sweepManifold<1>(a, b, c, &pulls[4 * k], &rows[4 * k], inverses[k]);
+                    break;
+                default:
+                    break;
+            }
         }
     }
 }
