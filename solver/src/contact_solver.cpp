@@ -98,7 +98,10 @@ Mat3 pointMassMatrix(const SolverBody& a, const SolverBody& b, const ContactCons
 // bounce samples the continuous one and bounce heights are right to O(h^2). Taking vEnd as the
 // impact speed instead, as a plain Newton's law does, put +0.7 % into the first bounce's height at
 // h = 1/240, and the continuous speed at the impact -1.9 %.
-Impact impactWithinStep(Real s, Real vEnd, Real a, Real h) {
+namespace {
+
+// impactWithinStep, inline so that prepareManifold's AVX2 copy takes it in (as setDisc).
+inline Impact impactAt(Real s, Real vEnd, Real a, Real h) {
     const Real w = vEnd - 0.5 * a * h;
     if (s <= 0)
         return {0, w < 0 ? w : vEnd};
@@ -117,6 +120,12 @@ Impact impactWithinStep(Real s, Real vEnd, Real a, Real h) {
     }
     // Stopped although it would not have arrived (pushed by other contacts): the linear guess.
     return {vEnd < 0 ? std::clamp(-s / vEnd, Real(0), h) : h, vEnd};
+}
+
+}  // namespace
+
+Impact impactWithinStep(Real s, Real vEnd, Real a, Real h) {
+    return impactAt(s, vEnd, a, h);
 }
 
 // The coupled friction update of one point, solved exactly: the impulse lambda in the disc
@@ -161,14 +170,18 @@ Vec2 solveDiscRim(const DiscBlock& k, const Vec2& b, Real radius) {
     return lambda * (radius / lambda.norm());  // on the rim to rounding
 }
 
-// The eigen-decomposition in closed form: k = axes diag(moments) axes'.
-bool DiscBlock::set(const Mat2& k) {
+namespace {
+
+// The eigen-decomposition in closed form: k = axes diag(moments) axes'. Inline, so that
+// prepareManifold's AVX2 copy (lane_kernel.h) takes it in: flatten left the member function a
+// call to its baseline code.
+inline bool setDisc(DiscBlock& disc, const Mat2& k) {
     const Real mean = 0.5 * (k(0, 0) + k(1, 1));
     const Real half = 0.5 * (k(0, 0) - k(1, 1));
     const Real radius = std::sqrt(half * half + k(0, 1) * k(0, 1));
     // Singular (a body that cannot turn about these axes): no rows.
     if (!(mean - radius > 1e-12 * mean)) {
-        *this = DiscBlock{};
+        disc = DiscBlock{};
         return false;
     }
     // The larger moment's axis, (half + radius, k01) or, parallel to it, (k01, radius - half):
@@ -178,11 +191,17 @@ bool DiscBlock::set(const Mat2& k) {
     const Vec2 unit = radius > 0 ? Vec2(major / major.norm()) : Vec2::UnitX();  // any, if isotropic
     const Real cs = unit.x();
     const Real sn = unit.y();
-    block = k;
-    inverse = k.inverse();
-    moments = Vec2(mean - radius, mean + radius);
-    axes << -sn, cs, cs, sn;
+    disc.block = k;
+    disc.inverse = k.inverse();
+    disc.moments = Vec2(mean - radius, mean + radius);
+    disc.axes << -sn, cs, cs, sn;
     return true;
+}
+
+}  // namespace
+
+bool DiscBlock::set(const Mat2& k) {
+    return setDisc(*this, k);
 }
 
 std::array<Vec3, 2> frictionBasis(const Vec3& n) {
@@ -279,7 +298,7 @@ TUMBLE_LANE_KERNEL void prepareManifold(const SolverBody& a, const SolverBody& b
         p.angularB = p.rB.cross(c.normal);
         p.angularImpulseA = a.inverseInertia * p.angularA;
         p.angularImpulseB = b.inverseInertia * p.angularB;
-        p.tangent.set(kTangent);
+        setDisc(p.tangent, kTangent);
         for (int r = 0; r < 2; ++r) {
             p.tangentAngularA[r] = p.rA.cross(c.tangents[r]);
             p.tangentAngularB[r] = p.rB.cross(c.tangents[r]);
@@ -288,8 +307,8 @@ TUMBLE_LANE_KERNEL void prepareManifold(const SolverBody& a, const SolverBody& b
         }
         p.tangentMass = {1 / kTangent(0, 0), 1 / kTangent(1, 1)};
         p.approachSpeed = relativeVelocity(a, b, p).dot(c.normal);
-        const Impact impact = impactWithinStep(p.separation, p.approachSpeed + p.supportSpeed,
-                                               p.normalAcceleration, h);
+        const Impact impact =
+            impactAt(p.separation, p.approachSpeed + p.supportSpeed, p.normalAcceleration, h);
         p.impactTime = impact.time;
         p.impactSpeed = impact.speed;
         // Newton's law at the impact, then the parabola for the rest of the step; the
