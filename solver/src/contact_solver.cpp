@@ -204,16 +204,6 @@ bool DiscBlock::set(const Mat2& k) {
     return setDisc(*this, k);
 }
 
-std::array<Vec3, 2> frictionBasis(const Vec3& n) {
-    // The reference axis is the one least aligned with n, so the basis is a continuous function
-    // of n except where that choice switches.
-    const Vec3 axis = std::abs(n.x()) < 0.57735
-                          ? Vec3::UnitX()
-                          : (std::abs(n.y()) < 0.57735 ? Vec3::UnitY() : Vec3::UnitZ());
-    const Vec3 first = n.cross(axis).normalized();
-    return {first, n.cross(first)};
-}
-
 void checkSolverSettings(const SolverSettings& s) {
     if (s.iterations < 1)
         fail("SolverSettings.iterations = ", s.iterations, " must be >= 1");
