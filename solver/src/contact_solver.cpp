@@ -325,22 +325,7 @@ TUMBLE_LANE_KERNEL void prepareManifold(const SolverBody& a, const SolverBody& b
     // Zeros only where no point writes (a rep stos of 16 quadwords for every manifold before).
     if (c.pointCount < 4)
         c.normalBlock.setZero();
-    switch (c.pointCount) {
-        case 4:
-            fillNormalBlock<4>(a, b, c);
-            break;
-        case 3:
-            fillNormalBlock<3>(a, b, c);
-            break;
-        case 2:
-            fillNormalBlock<2>(a, b, c);
-            break;
-        case 1:
-            fillNormalBlock<1>(a, b, c);
-            break;
-        default:
-            break;
-    }
+    withPointCount(c.pointCount, [&]<int N>() { fillNormalBlock<N>(a, b, c); });
     prepareAngularFriction(a, b, c, settings.warmStart);
 }
 

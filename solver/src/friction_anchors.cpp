@@ -153,22 +153,9 @@ TUMBLE_LANE_KERNEL void sweepAnchors(SolverBody* bodies, const ContactConstraint
             const ContactConstraint& c = constraints[active[k]];
             SolverBody& a = bodies[c.bodyA];
             SolverBody& b = bodies[c.bodyB];
-            switch (c.pointCount) {
-                case 4:
-                    sweepManifold<4>(a, b, c, &pulls[4 * k], &rows[4 * k], inverses[k]);
-                    break;
-                case 3:
-                    sweepManifold<3>(a, b, c, &pulls[4 * k], &rows[4 * k], inverses[k]);
-                    break;
-                case 2:
-                    sweepManifold<2>(a, b, c, &pulls[4 * k], &rows[4 * k], inverses[k]);
-                    break;
-                case 1:
-                    sweepManifold<1>(a, b, c, &pulls[4 * k], &rows[4 * k], inverses[k]);
-                    break;
-                default:
-                    break;
-            }
+            withPointCount(c.pointCount, [&]<int N>() {
+                sweepManifold<N>(a, b, c, &pulls[4 * k], &rows[4 * k], inverses[k]);
+            });
         }
     }
 }
