@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tumble/core/lane_kernel.h"
+
 namespace tumble {
 namespace {
 
@@ -60,10 +62,21 @@ void AnchorTable::drifts(std::uint32_t slot, const Contact& contact, const BodyM
                          const AnchorLengths& lengths, bool reseatStale, Vec3* drifts) {
     if (entries_.size() <= slot)
         entries_.resize(slot + 1);
-    Entry& entry = entries_[slot];
+    driftsOf(entries_[slot], solve_, contact, a, b, h, c, lengths, reseatStale, drifts);
+}
+
+// drifts() on its entry. Compiled for AVX2 and the baseline like the solver's kernels
+// (lane_kernel.h, the same bits): the baseline's two-operand SSE2 copied every temporary of the
+// rotations and projections through extra registers (4.3 % of pyramid-20's instructions).
+TUMBLE_LANE_KERNEL void AnchorTable::driftsOf(Entry& entry, std::uint64_t solve,
+                                              const Contact& contact, const BodyMotion& a,
+                                              const BodyMotion& b, Real h,
+                                              const ContactConstraint& c,
+                                              const AnchorLengths& lengths, bool reseatStale,
+                                              Vec3* drifts) {
     const Vec3& n = c.normal;
-    bool seat = entry.solve + 1 != solve_ || entry.count == 0;
-    entry.solve = solve_;
+    bool seat = entry.solve + 1 != solve || entry.count == 0;
+    entry.solve = solve;
     Entry kept = entry;  // the anchors in this step's point order
     for (int i = 0; i < c.pointCount && !seat; ++i) {
         const std::uint32_t feature = contact.manifold.points[i].featureId;

@@ -52,6 +52,11 @@ private:
         /// Seated afresh as stale, and not yet back within the deadband since (anchor_table.cpp)
         bool reseated = false;
     };
+    /// drifts() on the slot's entry, `solve` the current solve (anchor_table.cpp)
+    static void driftsOf(Entry& entry, std::uint64_t solve, const Contact& contact,
+                         const BodyMotion& a, const BodyMotion& b, Real h,
+                         const ContactConstraint& c, const AnchorLengths& lengths, bool reseatStale,
+                         Vec3* drifts);
     std::vector<Entry> entries_;  ///< by contact slot
     std::uint64_t solve_ = 0;
 };

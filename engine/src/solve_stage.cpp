@@ -6,6 +6,7 @@
 #include "integrator.h"
 #include "joints.h"
 #include "springs.h"
+#include "tumble/core/lane_kernel.h"
 #include "tumble/solver/friction_anchors.h"
 
 namespace tumble {
@@ -36,6 +37,40 @@ struct VelocityChange {
                   bodies.previousMotion[index].angularVelocity) {}
     Vec3 at(const Vec3& r) const { return linear + angular.cross(r); }
 };
+
+// A constraint's fields from its contact (buildConstraints), but for its bodies. Compiled for
+// AVX2 and the baseline like the solver's kernels (lane_kernel.h, the same bits): the
+// baseline's two-operand SSE2 copied every temporary through extra registers.
+TUMBLE_LANE_KERNEL void fillConstraint(ContactConstraint& c, const Contact& contact,
+                                       const BodyStore& bodies, std::uint32_t indexA,
+                                       std::uint32_t indexB, const Material& materialA,
+                                       const Material& materialB, Real inverseH) {
+    c.normal = contact.manifold.normal;
+    c.friction = mixFriction(materialA.friction, materialB.friction);
+    c.restitution = mixRestitution(materialA.restitution, materialB.restitution);
+    c.spinningFriction = std::max(materialA.spinningFriction, materialB.spinningFriction);
+    c.rollingFriction = std::max(materialA.rollingFriction, materialB.rollingFriction);
+    c.angularImpulse = contact.angularImpulse;
+    c.pointCount = contact.manifold.pointCount;
+    c.pushOut = true;  // run() clears it for the contacts of sprung bodies
+    // The solver builds its tangent basis from the normal; cached friction is kept in world
+    // coordinates so a turning basis does not scramble it.
+    c.tangents = frictionBasis(c.normal);
+    c.tangentsSet = true;  // prepare() would take the same basis again (pile-1000: 0.3 %)
+    const VelocityChange changeA(bodies, indexA);
+    const VelocityChange changeB(bodies, indexB);
+    for (int i = 0; i < c.pointCount; ++i) {
+        const ContactPoint& point = contact.manifold.points[i];
+        ContactConstraintPoint& p = c.points[i];
+        p.rA = point.position - bodies.motion[indexA].center;
+        p.rB = point.position - bodies.motion[indexB].center;
+        p.separation = point.separation;
+        p.normalImpulse = contact.normalImpulse[i];
+        p.tangentImpulse = {contact.tangentImpulse[i].dot(c.tangents[0]),
+                            contact.tangentImpulse[i].dot(c.tangents[1])};
+        p.normalAcceleration = c.normal.dot(changeB.at(p.rB) - changeA.at(p.rA)) * inverseH;
+    }
+}
 
 }  // namespace
 
@@ -71,32 +106,7 @@ std::span<ContactConstraint> SolveStage::buildConstraints(const BodyStore& bodie
         ContactConstraint& c = constraints_[count++];
         c.bodyA = solverBodyIndex(bodies, indexA);
         c.bodyB = solverBodyIndex(bodies, indexB);
-        c.normal = contact.manifold.normal;
-        c.friction = mixFriction(materialA.friction, materialB.friction);
-        c.restitution = mixRestitution(materialA.restitution, materialB.restitution);
-        c.spinningFriction = std::max(materialA.spinningFriction, materialB.spinningFriction);
-        c.rollingFriction = std::max(materialA.rollingFriction, materialB.rollingFriction);
-        c.angularImpulse = contact.angularImpulse;
-        c.pointCount = contact.manifold.pointCount;
-        c.pushOut = true;  // run() clears it for the contacts of sprung bodies
-        // The solver builds its tangent basis from the normal; cached friction is kept in world
-        // coordinates so a turning basis does not scramble it.
-        c.tangents = frictionBasis(c.normal);
-        c.tangentsSet = true;  // prepare() would take the same basis again (pile-1000: 0.3 %)
-        const VelocityChange changeA(bodies, indexA);
-        const VelocityChange changeB(bodies, indexB);
-        for (int i = 0; i < c.pointCount; ++i) {
-            const ContactPoint& point = contact.manifold.points[i];
-            ContactConstraintPoint& p = c.points[i];
-            p.rA = point.position - bodies.motion[indexA].center;
-            p.rB = point.position - bodies.motion[indexB].center;
-            p.separation = point.separation;
-            p.normalImpulse = contact.normalImpulse[i];
-            p.tangentImpulse = {contact.tangentImpulse[i].dot(c.tangents[0]),
-                                contact.tangentImpulse[i].dot(c.tangents[1])};
-            p.normalAcceleration =
-                c.normal.dot(changeB.at(p.rB) - changeA.at(p.rA)) * context.inverseH;
-        }
+        fillConstraint(c, contact, bodies, indexA, indexB, materialA, materialB, context.inverseH);
         constraintContact_.push_back(slot);
     }
     return std::span<ContactConstraint>(constraints_).first(count);

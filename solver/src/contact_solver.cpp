@@ -98,7 +98,10 @@ Mat3 pointMassMatrix(const SolverBody& a, const SolverBody& b, const ContactCons
 // bounce samples the continuous one and bounce heights are right to O(h^2). Taking vEnd as the
 // impact speed instead, as a plain Newton's law does, put +0.7 % into the first bounce's height at
 // h = 1/240, and the continuous speed at the impact -1.9 %.
-Impact impactWithinStep(Real s, Real vEnd, Real a, Real h) {
+namespace {
+
+// impactWithinStep, inline so that prepareManifold's AVX2 copy takes it in (as setDisc).
+inline Impact impactAt(Real s, Real vEnd, Real a, Real h) {
     const Real w = vEnd - 0.5 * a * h;
     if (s <= 0)
         return {0, w < 0 ? w : vEnd};
@@ -117,6 +120,12 @@ Impact impactWithinStep(Real s, Real vEnd, Real a, Real h) {
     }
     // Stopped although it would not have arrived (pushed by other contacts): the linear guess.
     return {vEnd < 0 ? std::clamp(-s / vEnd, Real(0), h) : h, vEnd};
+}
+
+}  // namespace
+
+Impact impactWithinStep(Real s, Real vEnd, Real a, Real h) {
+    return impactAt(s, vEnd, a, h);
 }
 
 // The coupled friction update of one point, solved exactly: the impulse lambda in the disc
@@ -161,14 +170,18 @@ Vec2 solveDiscRim(const DiscBlock& k, const Vec2& b, Real radius) {
     return lambda * (radius / lambda.norm());  // on the rim to rounding
 }
 
-// The eigen-decomposition in closed form: k = axes diag(moments) axes'.
-bool DiscBlock::set(const Mat2& k) {
+namespace {
+
+// The eigen-decomposition in closed form: k = axes diag(moments) axes'. Inline, so that
+// prepareManifold's AVX2 copy (lane_kernel.h) takes it in: flatten left the member function a
+// call to its baseline code.
+inline bool setDisc(DiscBlock& disc, const Mat2& k) {
     const Real mean = 0.5 * (k(0, 0) + k(1, 1));
     const Real half = 0.5 * (k(0, 0) - k(1, 1));
     const Real radius = std::sqrt(half * half + k(0, 1) * k(0, 1));
     // Singular (a body that cannot turn about these axes): no rows.
     if (!(mean - radius > 1e-12 * mean)) {
-        *this = DiscBlock{};
+        disc = DiscBlock{};
         return false;
     }
     // The larger moment's axis, (half + radius, k01) or, parallel to it, (k01, radius - half):
@@ -178,21 +191,17 @@ bool DiscBlock::set(const Mat2& k) {
     const Vec2 unit = radius > 0 ? Vec2(major / major.norm()) : Vec2::UnitX();  // any, if isotropic
     const Real cs = unit.x();
     const Real sn = unit.y();
-    block = k;
-    inverse = k.inverse();
-    moments = Vec2(mean - radius, mean + radius);
-    axes << -sn, cs, cs, sn;
+    disc.block = k;
+    disc.inverse = k.inverse();
+    disc.moments = Vec2(mean - radius, mean + radius);
+    disc.axes << -sn, cs, cs, sn;
     return true;
 }
 
-std::array<Vec3, 2> frictionBasis(const Vec3& n) {
-    // The reference axis is the one least aligned with n, so the basis is a continuous function
-    // of n except where that choice switches.
-    const Vec3 axis = std::abs(n.x()) < 0.57735
-                          ? Vec3::UnitX()
-                          : (std::abs(n.y()) < 0.57735 ? Vec3::UnitY() : Vec3::UnitZ());
-    const Vec3 first = n.cross(axis).normalized();
-    return {first, n.cross(first)};
+}  // namespace
+
+bool DiscBlock::set(const Mat2& k) {
+    return setDisc(*this, k);
 }
 
 void checkSolverSettings(const SolverSettings& s) {
@@ -233,6 +242,24 @@ void checkSolverSettings(const SolverSettings& s) {
 
 namespace {
 
+// K_ij = 1/mA + 1/mB + (rA_i x n)' IA^-1 (rA_j x n) + (rB_i x n)' IB^-1 (rB_j x n): the normal
+// block of a manifold of N points. N is a template argument so that its loops unroll (the same
+// operations; their counters were a tenth of prepareManifold's instructions on pyramid-20).
+template <int N>
+void fillNormalBlock(const SolverBody& a, const SolverBody& b, ContactConstraint& c) {
+#pragma GCC unroll 4
+    for (int i = 0; i < N; ++i) {
+        const ContactConstraintPoint& p = c.points[i];
+#pragma GCC unroll 4
+        for (int j = 0; j < N; ++j) {
+            const ContactConstraintPoint& q = c.points[j];
+            c.normalBlock(i, j) = a.inverseMass + b.inverseMass +
+                                  p.angularA.dot(q.angularImpulseA) +
+                                  p.angularB.dot(q.angularImpulseB);
+        }
+    }
+}
+
 // prepare's pass over one manifold: its basis, each point's masses, Jacobians, tangent block,
 // approach and impact, its normal block and angular rows. Compiled for AVX2 and the baseline
 // like the lane kernels (lane_kernel.h, the same bits): the baseline's two-operand SSE2 moved
@@ -261,7 +288,7 @@ TUMBLE_LANE_KERNEL void prepareManifold(const SolverBody& a, const SolverBody& b
         p.angularB = p.rB.cross(c.normal);
         p.angularImpulseA = a.inverseInertia * p.angularA;
         p.angularImpulseB = b.inverseInertia * p.angularB;
-        p.tangent.set(kTangent);
+        setDisc(p.tangent, kTangent);
         for (int r = 0; r < 2; ++r) {
             p.tangentAngularA[r] = p.rA.cross(c.tangents[r]);
             p.tangentAngularB[r] = p.rB.cross(c.tangents[r]);
@@ -270,8 +297,8 @@ TUMBLE_LANE_KERNEL void prepareManifold(const SolverBody& a, const SolverBody& b
         }
         p.tangentMass = {1 / kTangent(0, 0), 1 / kTangent(1, 1)};
         p.approachSpeed = relativeVelocity(a, b, p).dot(c.normal);
-        const Impact impact = impactWithinStep(p.separation, p.approachSpeed + p.supportSpeed,
-                                               p.normalAcceleration, h);
+        const Impact impact =
+            impactAt(p.separation, p.approachSpeed + p.supportSpeed, p.normalAcceleration, h);
         p.impactTime = impact.time;
         p.impactSpeed = impact.speed;
         // Newton's law at the impact, then the parabola for the rest of the step; the
@@ -298,15 +325,7 @@ TUMBLE_LANE_KERNEL void prepareManifold(const SolverBody& a, const SolverBody& b
     // Zeros only where no point writes (a rep stos of 16 quadwords for every manifold before).
     if (c.pointCount < 4)
         c.normalBlock.setZero();
-    for (int i = 0; i < c.pointCount; ++i) {
-        const ContactConstraintPoint& p = c.points[i];
-        for (int j = 0; j < c.pointCount; ++j) {
-            const ContactConstraintPoint& q = c.points[j];
-            c.normalBlock(i, j) = a.inverseMass + b.inverseMass +
-                                  p.angularA.dot(q.angularImpulseA) +
-                                  p.angularB.dot(q.angularImpulseB);
-        }
-    }
+    withPointCount(c.pointCount, [&]<int N>() { fillNormalBlock<N>(a, b, c); });
     prepareAngularFriction(a, b, c, settings.warmStart);
 }
 

@@ -128,6 +128,21 @@ inline bool checksOut(const Mat4& k, int n, const Vec4& c, unsigned set, const V
 
 }  // namespace detail
 
+/// Calls f.template operator()<N>() with N = n, a manifold's point count (1..4; nothing for
+/// another n), so that loops over the points unroll with N a constant: the same operations in
+/// the same order, without their counters (prepareManifold, the friction anchor pass).
+template <class F>
+[[gnu::always_inline]] inline void withPointCount(int n, F&& f) {
+    if (n == 4)
+        f.template operator()<4>();
+    else if (n == 3)
+        f.template operator()<3>();
+    else if (n == 2)
+        f.template operator()<2>();
+    else if (n == 1)
+        f.template operator()<1>();
+}
+
 /// solveNormalBlock's first attempt, inline: last answer's active set, solved with the factor
 /// cached for it (or no load at all). Most sweeps end there, and the call, its vectors passed
 /// through memory, sat on the sweep's critical path (a stack's column is one chain of

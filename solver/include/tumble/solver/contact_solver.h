@@ -46,6 +46,7 @@
 /// into the body array); knows no shapes. Deterministic: constraints are solved in array order.
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -61,8 +62,16 @@ namespace tumble {
 
 /// The two friction directions the solver uses for normal n (unit): orthonormal, right-handed
 /// with n, and a deterministic function of n. Callers caching friction impulses between steps
-/// convert through it.
-std::array<Vec3, 2> frictionBasis(const Vec3& n);
+/// convert through it. Inline: the constraint builder's kernel (lane_kernel.h) takes it in.
+inline std::array<Vec3, 2> frictionBasis(const Vec3& n) {
+    // The reference axis is the one least aligned with n, so the basis is a continuous function
+    // of n except where that choice switches.
+    const Vec3 axis = std::abs(n.x()) < 0.57735
+                          ? Vec3::UnitX()
+                          : (std::abs(n.y()) < 0.57735 ? Vec3::UnitY() : Vec3::UnitZ());
+    const Vec3 first = n.cross(axis).normalized();
+    return {first, n.cross(first)};
+}
 
 /// Refuses (InvalidArgument) settings outside the ranges documented on each field.
 void checkSolverSettings(const SolverSettings& settings);
