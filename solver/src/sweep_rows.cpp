@@ -55,7 +55,8 @@ struct SweepBody {
 // box model with its masses from the constraint. Returns the largest change when measuring.
 // The model and the measuring are template arguments, and the manifold's basis is held in
 // locals: the points' stores might alias it, so it was loaded again for every point.
-template <bool kCoupled, bool kMeasure>
+// kPoints: the manifold's point count when known at compile time (SweepRows::sweepWith), else 0.
+template <bool kCoupled, bool kMeasure, int kPoints>
 Real solveFriction(SweepBody& a, SweepBody& b, const SweepManifold& m, SweepPoint* points,
                    const ContactConstraint& c, Real omega) {
     Real largestChange = 0;
@@ -64,7 +65,7 @@ Real solveFriction(SweepBody& a, SweepBody& b, const SweepManifold& m, SweepPoin
     const Vec3& t1 = tangents[1];
     const Pair target = loadPair(m.tangentTarget.data());
     const Real friction = m.friction;
-    const int count = m.pointCount;
+    const int count = kPoints > 0 ? kPoints : m.pointCount;
     for (int i = 0; i < count; ++i) {
         SweepPoint& p = points[i];
         const Vec3 dv = b.linearVelocity - a.linearVelocity;
@@ -99,15 +100,24 @@ Real solveFriction(SweepBody& a, SweepBody& b, const SweepManifold& m, SweepPoin
     return largestChange;
 }
 
+// What a sweep reads of the settings, read once: the points' stores might alias the settings,
+// so their fields were loaded again for every manifold.
+struct SweepSettings {
+    bool coupled;  ///< FrictionModel::Coupled
+    bool measure;  ///< tolerance > 0
+    Real omega;    ///< relaxation
+    Real slop;     ///< (m)
+};
+
+template <int kPoints>
 Real solveFriction(SweepBody& a, SweepBody& b, const SweepManifold& m, SweepPoint* points,
-                   const ContactConstraint& c, const SolverSettings& settings) {
-    const Real omega = settings.relaxation;
-    if (settings.friction == FrictionModel::Coupled) {
-        return settings.tolerance > 0 ? solveFriction<true, true>(a, b, m, points, c, omega)
-                                      : solveFriction<true, false>(a, b, m, points, c, omega);
+                   const ContactConstraint& c, const SweepSettings& s) {
+    if (s.coupled) {
+        return s.measure ? solveFriction<true, true, kPoints>(a, b, m, points, c, s.omega)
+                         : solveFriction<true, false, kPoints>(a, b, m, points, c, s.omega);
     }
-    return settings.tolerance > 0 ? solveFriction<false, true>(a, b, m, points, c, omega)
-                                  : solveFriction<false, false>(a, b, m, points, c, omega);
+    return s.measure ? solveFriction<false, true, kPoints>(a, b, m, points, c, s.omega)
+                     : solveFriction<false, false, kPoints>(a, b, m, points, c, s.omega);
 }
 
 // The soft step's patch of a manifold of several points (slide_patch.h), on the sweep's copies:
@@ -279,15 +289,21 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
     targetInputs_ = inputs;
     if (Patches && softScales != nullptr)
         slidBiased_.assign(manifolds_.size(), 0);  // capacity kept from step to step
-    for (const SweepManifold& m : manifolds_) {
+    const SweepSettings local{settings.friction == FrictionModel::Coupled, settings.tolerance > 0,
+                              settings.relaxation, settings.slop};
+    // One manifold's rows, with its point count a constant when kPoints > 0 (0: m.pointCount):
+    // the points' loops unroll and the one-point tests fold, the same operations in the same
+    // order. Most of a pile's manifolds have one or two points (1.23 on average).
+    const auto solveManifold = [&]<int kPoints>(const SweepManifold& m) {
+        const int pointCount = kPoints > 0 ? kPoints : m.pointCount;
         SolverBody& bodyA = bodies[m.bodyA];
         SolverBody& bodyB = bodies[m.bodyB];
         SweepBody a(bodyA);
         SweepBody b(bodyB);
         SweepPoint* points = points_.data() + m.firstPoint;
         if (refresh) {
-            for (int i = 0; i < m.pointCount; ++i)
-                points[i].target = normalTarget(points[i], bias, settings.slop, inverseH);
+            for (int i = 0; i < pointCount; ++i)
+                points[i].target = normalTarget(points[i], bias, local.slop, inverseH);
         }
         // Friction first, with the normal impulses of the last sweep: non-penetration, solved
         // last, matters more. The soft step's biased sweep leaves the friction of exactly
@@ -296,14 +312,13 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
         // The soft step's relax sweep solves a lone point's friction again after its normal
         // row, so its bound is the substep's whole normal impulse (ContactSolver::softSweep).
         const bool frictionAgain =
-            Patches && softScales == nullptr && m.pointCount == 1 && !m.grouped;
+            Patches && softScales == nullptr && pointCount == 1 && !m.grouped;
         if (m.friction > 0 && !(m.grouped && softScales != nullptr)) {
-            if (Patches && m.pointCount > 1 && settings.friction == FrictionModel::Coupled &&
-                !patchSticks(a, b, m, points)) {
+            if (Patches && pointCount > 1 && local.coupled && !patchSticks(a, b, m, points)) {
                 slid = onPatch(a, b, bodyA, bodyB, m, points,
                                [&](PatchBodies& on, std::span<PatchPoint> patch) {
                                    return slidePatch(on, m.normal, m.tangents(), m.tangentTarget,
-                                                     m.friction, settings.relaxation, patch);
+                                                     m.friction, local.omega, patch);
                                });
             }
             // The biased sweep keeps a sliding face's patch: the points' rows would meet the
@@ -313,16 +328,16 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
             if (Patches && softScales != nullptr)
                 slidBiased_[&m - manifolds_.data()] = slid ? 1 : 0;
             if (!(slid && softScales != nullptr)) {
-                largestChange =
-                    std::max(largestChange,
-                             solveFriction(a, b, m, points, constraints[m.constraint], settings));
+                largestChange = std::max(
+                    largestChange,
+                    solveFriction<kPoints>(a, b, m, points, constraints[m.constraint], local));
             }
         }
         // The soft step's relax sweep solves them after its normal rows (ContactSolver::softSweep).
         const bool angularLast = Patches && softScales == nullptr;
         if (m.angular && !angularLast) {
             largestChange = std::max(largestChange, angularRows(a, b, bodyA, bodyB, m, points,
-                                                                constraints, settings.relaxation));
+                                                                constraints, local.omega));
         }
         if (!m.grouped) {
             const Mat4* block = m.block == SweepManifold::kNoBlock ? nullptr : &blocks_[m.block];
@@ -330,36 +345,45 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
             const Real* softScale = softScales == nullptr
                                         ? nullptr
                                         : softScales + (m.bodyA == 0 || m.bodyB == 0 ? 2 : 1);
-            solveNormals(a, b, m.normal, block, points, m.pointCount, factors[m.constraint],
-                         settings, inverseH, bias, largestChange, softScale);
+            solveNormals(a, b, m.normal, block, points, pointCount, factors[m.constraint], settings,
+                         inverseH, bias, largestChange, softScale);
         }
         if (frictionAgain && m.friction > 0) {
-            largestChange = std::max(
-                largestChange, solveFriction(a, b, m, points, constraints[m.constraint], settings));
+            largestChange =
+                std::max(largestChange,
+                         solveFriction<kPoints>(a, b, m, points, constraints[m.constraint], local));
         }
         if (m.angular && angularLast) {
             largestChange = std::max(largestChange, angularRows(a, b, bodyA, bodyB, m, points,
-                                                                constraints, settings.relaxation));
+                                                                constraints, local.omega));
         }
         // A face whose patch slid in either sweep of the substep is solved again at the relax
         // sweep's normals (slide_patch.cpp says why): its patch, then its points' rows. Only such
         // a face: the rest kept their bits (onPatch's gather on every face of several points was
         // a fifth of the patch's cost).
-        if (Patches && softScales == nullptr && !m.grouped && m.friction > 0 && m.pointCount > 1 &&
-            settings.friction == FrictionModel::Coupled &&
-            (slid || slidBiased_[&m - manifolds_.data()] != 0)) {
+        if (Patches && softScales == nullptr && !m.grouped && m.friction > 0 && pointCount > 1 &&
+            local.coupled && (slid || slidBiased_[&m - manifolds_.data()] != 0)) {
             if (!patchSticks(a, b, m, points)) {
                 onPatch(a, b, bodyA, bodyB, m, points,
                         [&](PatchBodies& on, std::span<PatchPoint> patch) {
                             return slidePatch(on, m.normal, m.tangents(), m.tangentTarget,
-                                              m.friction, settings.relaxation, patch);
+                                              m.friction, local.omega, patch);
                         });
             }
-            largestChange = std::max(
-                largestChange, solveFriction(a, b, m, points, constraints[m.constraint], settings));
+            largestChange =
+                std::max(largestChange,
+                         solveFriction<kPoints>(a, b, m, points, constraints[m.constraint], local));
         }
         a.store(bodyA);
         b.store(bodyB);
+    };
+    for (const SweepManifold& m : manifolds_) {
+        if (m.pointCount == 1)
+            solveManifold.template operator()<1>(m);
+        else if (m.pointCount == 2)
+            solveManifold.template operator()<2>(m);
+        else
+            solveManifold.template operator()<0>(m);
     }
     return largestChange;
 }
