@@ -265,19 +265,30 @@ void SweepRows::add(const ContactConstraint& c, std::uint32_t index,
 Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                       std::span<NormalFactor> factors, const SolverSettings& settings,
                       Real inverseH, Real bias, const Real* softScales, bool patches) {
-    return patches
-               ? sweepWith<true>(bodies, constraints, factors, settings, inverseH, bias, softScales)
-               : sweepWith<false>(bodies, constraints, factors, settings, inverseH, bias,
-                                  softScales);
+    if (patches)
+        return sweepWith<true, false>(bodies, constraints, factors, settings, inverseH, bias,
+                                      softScales);
+    if (softScales == nullptr && !(settings.tolerance > 0))
+        return sweepWith<false, true>(bodies, constraints, factors, settings, inverseH, bias,
+                                      nullptr);
+    return sweepWith<false, false>(bodies, constraints, factors, settings, inverseH, bias,
+                                   softScales);
 }
 
 // The default step's sweeps never take a patch: compiled without the patches' branches. Flat
 // (sweep_rows.h), since with two callers GCC would call the kernels out of line: the patches'
 // branches alone cost +16 % on pile-1000's sweeps, two plain instantiations +14 %.
-template <bool Patches>
+// Plain: the default step's (no soft scales, not measuring), whose tests on them fold.
+template <bool Patches, bool Plain>
 Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
-                          std::span<NormalFactor> factors, const SolverSettings& settings,
-                          Real inverseH, Real bias, const Real* softScales) {
+                          std::span<NormalFactor> factors, const SolverSettings& given,
+                          Real inverseH, Real bias, const Real* softScalesGiven) {
+    const Real* softScales = Plain ? nullptr : softScalesGiven;
+    // A local copy, which the points' stores cannot alias: its fields are not loaded again for
+    // every manifold, and a plain sweep's tolerance is known to be 0.
+    SolverSettings settings = given;
+    if (Plain)
+        settings.tolerance = 0;
     Real largestChange = 0;
     // The targets are the same in every sweep of a phase (biased, relax): the first computes
     // them. Compared as bits, so a -0 bias or a NaN is not taken for another value.
@@ -296,6 +307,13 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
     // order. Most of a pile's manifolds have one or two points (1.23 on average).
     const auto solveManifold = [&]<int kPoints>(const SweepManifold& m) {
         const int pointCount = kPoints > 0 ? kPoints : m.pointCount;
+        // Not measuring, the friction's change is 0 and leaves the largest as it is.
+        const auto friction = [&](SweepBody& a, SweepBody& b, SweepPoint* points) {
+            const Real change =
+                solveFriction<kPoints>(a, b, m, points, constraints[m.constraint], local);
+            if (local.measure)
+                largestChange = std::max(largestChange, change);
+        };
         SolverBody& bodyA = bodies[m.bodyA];
         SolverBody& bodyB = bodies[m.bodyB];
         SweepBody a(bodyA);
@@ -328,9 +346,7 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
             if (Patches && softScales != nullptr)
                 slidBiased_[&m - manifolds_.data()] = slid ? 1 : 0;
             if (!(slid && softScales != nullptr)) {
-                largestChange = std::max(
-                    largestChange,
-                    solveFriction<kPoints>(a, b, m, points, constraints[m.constraint], local));
+                friction(a, b, points);
             }
         }
         // The soft step's relax sweep solves them after its normal rows (ContactSolver::softSweep).
@@ -349,9 +365,7 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
                          inverseH, bias, largestChange, softScale);
         }
         if (frictionAgain && m.friction > 0) {
-            largestChange =
-                std::max(largestChange,
-                         solveFriction<kPoints>(a, b, m, points, constraints[m.constraint], local));
+            friction(a, b, points);
         }
         if (m.angular && angularLast) {
             largestChange = std::max(largestChange, angularRows(a, b, bodyA, bodyB, m, points,
@@ -370,9 +384,7 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
                                               m.friction, local.omega, patch);
                         });
             }
-            largestChange =
-                std::max(largestChange,
-                         solveFriction<kPoints>(a, b, m, points, constraints[m.constraint], local));
+            friction(a, b, points);
         }
         a.store(bodyA);
         b.store(bodyB);
