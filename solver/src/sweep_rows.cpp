@@ -268,7 +268,8 @@ Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint>
     if (patches)
         return sweepWith<true, false>(bodies, constraints, factors, settings, inverseH, bias,
                                       softScales);
-    if (softScales == nullptr && !(settings.tolerance > 0))
+    if (softScales == nullptr && !(settings.tolerance > 0) &&
+        settings.friction == FrictionModel::Coupled)
         return sweepWith<false, true>(bodies, constraints, factors, settings, inverseH, bias,
                                       nullptr);
     return sweepWith<false, false>(bodies, constraints, factors, settings, inverseH, bias,
@@ -278,7 +279,8 @@ Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint>
 // The default step's sweeps never take a patch: compiled without the patches' branches. Flat
 // (sweep_rows.h), since with two callers GCC would call the kernels out of line: the patches'
 // branches alone cost +16 % on pile-1000's sweeps, two plain instantiations +14 %.
-// Plain: the default step's (no soft scales, not measuring), whose tests on them fold.
+// Plain: the default step's (no soft scales, not measuring, coupled friction), whose tests on
+// them fold.
 template <bool Patches, bool Plain>
 Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                           std::span<NormalFactor> factors, const SolverSettings& given,
@@ -300,8 +302,8 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
     targetInputs_ = inputs;
     if (Patches && softScales != nullptr)
         slidBiased_.assign(manifolds_.size(), 0);  // capacity kept from step to step
-    const SweepSettings local{settings.friction == FrictionModel::Coupled, settings.tolerance > 0,
-                              settings.relaxation, settings.slop};
+    const SweepSettings local{Plain || settings.friction == FrictionModel::Coupled,
+                              settings.tolerance > 0, settings.relaxation, settings.slop};
     // One manifold's rows, with its point count a constant when kPoints > 0 (0: m.pointCount):
     // the points' loops unroll and the one-point tests fold, the same operations in the same
     // order. Most of a pile's manifolds have one or two points (1.23 on average).

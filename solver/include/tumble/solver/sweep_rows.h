@@ -108,7 +108,7 @@ private:
     /// The points added since clear().
     std::span<SweepPoint> points() { return {points_.data(), pointCount_}; }
     /// sweep() with `patches`, and whether it is the default step's plain sweep (no soft scales,
-    /// not measuring), fixed at compile time (sweep_rows.cpp says why).
+    /// not measuring, coupled friction), fixed at compile time (sweep_rows.cpp says why).
     template <bool Patches, bool Plain>
     [[gnu::flatten]] Real sweepWith(std::span<SolverBody> bodies,
                                     std::span<ContactConstraint> constraints,
