@@ -6,6 +6,7 @@
 #include "contact_kernels.h"
 #include "normal_block.h"
 #include "slide_patch.h"
+#include "tumble/core/lane_kernel.h"
 #include "tumble/solver/contact_solver.h"
 
 namespace tumble {
@@ -270,10 +271,17 @@ Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint>
                                       softScales);
     if (softScales == nullptr && !(settings.tolerance > 0) &&
         settings.friction == FrictionModel::Coupled)
-        return sweepWith<false, true>(bodies, constraints, factors, settings, inverseH, bias,
-                                      nullptr);
+        return sweepPlain(bodies, constraints, factors, settings, inverseH, bias);
     return sweepWith<false, false>(bodies, constraints, factors, settings, inverseH, bias,
                                    softScales);
+}
+
+TUMBLE_LANE_KERNEL Real SweepRows::sweepPlain(std::span<SolverBody> bodies,
+                                              std::span<ContactConstraint> constraints,
+                                              std::span<NormalFactor> factors,
+                                              const SolverSettings& settings, Real inverseH,
+                                              Real bias) {
+    return sweepWith<false, true>(bodies, constraints, factors, settings, inverseH, bias, nullptr);
 }
 
 // The default step's sweeps never take a patch: compiled without the patches' branches. Flat

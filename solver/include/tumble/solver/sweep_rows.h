@@ -115,6 +115,12 @@ private:
                                     std::span<NormalFactor> factors, const SolverSettings& given,
                                     Real inverseH, Real bias, const Real* softScalesGiven);
 
+    /// sweepWith<false, true>, the default step's sweep, as a lane kernel (lane_kernel.h): its
+    /// AVX2 copy's three-operand instructions save the baseline's register copies.
+    Real sweepPlain(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
+                    std::span<NormalFactor> factors, const SolverSettings& settings, Real inverseH,
+                    Real bias);
+
     std::vector<SweepManifold> manifolds_;
     /// The first pointCount_ are this step's; the rest is storage kept for the next steps.
     std::vector<SweepPoint> points_;
