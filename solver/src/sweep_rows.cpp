@@ -57,7 +57,8 @@ struct SweepBody {
 // The model and the measuring are template arguments, and the manifold's basis is held in
 // locals: the points' stores might alias it, so it was loaded again for every point.
 // kPoints: the manifold's point count when known at compile time (SweepRows::sweepWith), else 0.
-template <bool kCoupled, bool kMeasure, int kPoints>
+// kMovesA: as applyNormal's (normal_block.h).
+template <bool kCoupled, bool kMeasure, int kPoints, bool kMovesA>
 Real solveFriction(SweepBody& a, SweepBody& b, const SweepManifold& m, SweepPoint* points,
                    const ContactConstraint& c, Real omega) {
     Real largestChange = 0;
@@ -90,8 +91,11 @@ Real solveFriction(SweepBody& a, SweepBody& b, const SweepManifold& m, SweepPoin
             delta = next - old;
         }
         const Vec3 linear = delta.x() * t0 + delta.y() * t1;
-        a.linearVelocity -= a.inverseMass * linear;
-        a.angularVelocity -= delta.x() * p.tangentImpulseA[0] + delta.y() * p.tangentImpulseA[1];
+        if constexpr (kMovesA) {
+            a.linearVelocity -= a.inverseMass * linear;
+            a.angularVelocity -=
+                delta.x() * p.tangentImpulseA[0] + delta.y() * p.tangentImpulseA[1];
+        }
         b.linearVelocity += b.inverseMass * linear;
         b.angularVelocity += delta.x() * p.tangentImpulseB[0] + delta.y() * p.tangentImpulseB[1];
         p.tangentImpulse = {next.x(), next.y()};
@@ -110,15 +114,16 @@ struct SweepSettings {
     Real slop;     ///< (m)
 };
 
-template <int kPoints>
+template <int kPoints, bool kMovesA>
 Real solveFriction(SweepBody& a, SweepBody& b, const SweepManifold& m, SweepPoint* points,
                    const ContactConstraint& c, const SweepSettings& s) {
     if (s.coupled) {
-        return s.measure ? solveFriction<true, true, kPoints>(a, b, m, points, c, s.omega)
-                         : solveFriction<true, false, kPoints>(a, b, m, points, c, s.omega);
+        return s.measure
+                   ? solveFriction<true, true, kPoints, kMovesA>(a, b, m, points, c, s.omega)
+                   : solveFriction<true, false, kPoints, kMovesA>(a, b, m, points, c, s.omega);
     }
-    return s.measure ? solveFriction<false, true, kPoints>(a, b, m, points, c, s.omega)
-                     : solveFriction<false, false, kPoints>(a, b, m, points, c, s.omega);
+    return s.measure ? solveFriction<false, true, kPoints, kMovesA>(a, b, m, points, c, s.omega)
+                     : solveFriction<false, false, kPoints, kMovesA>(a, b, m, points, c, s.omega);
 }
 
 // The soft step's patch of a manifold of several points (slide_patch.h), on the sweep's copies:
@@ -314,13 +319,15 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
                               settings.tolerance > 0, settings.relaxation, settings.slop};
     // One manifold's rows, with its point count a constant when kPoints > 0 (0: m.pointCount):
     // the points' loops unroll and the one-point tests fold, the same operations in the same
-    // order. Most of a pile's manifolds have one or two points (1.23 on average).
-    const auto solveManifold = [&]<int kPoints>(const SweepManifold& m) {
+    // order. Most of a pile's manifolds have one or two points (1.23 on average). kMovesA false:
+    // A is the static body 0, whose updates leave it +0 and are skipped (applyNormal); a fifth
+    // to a quarter of a pile's manifolds lie on its floor and walls.
+    const auto solveManifold = [&]<int kPoints, bool kMovesA>(const SweepManifold& m) {
         const int pointCount = kPoints > 0 ? kPoints : m.pointCount;
         // Not measuring, the friction's change is 0 and leaves the largest as it is.
         const auto friction = [&](SweepBody& a, SweepBody& b, SweepPoint* points) {
             const Real change =
-                solveFriction<kPoints>(a, b, m, points, constraints[m.constraint], local);
+                solveFriction<kPoints, kMovesA>(a, b, m, points, constraints[m.constraint], local);
             if (local.measure)
                 largestChange = std::max(largestChange, change);
         };
@@ -371,8 +378,8 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
             const Real* softScale = softScales == nullptr
                                         ? nullptr
                                         : softScales + (m.bodyA == 0 || m.bodyB == 0 ? 2 : 1);
-            solveNormals(a, b, m.normal, block, points, pointCount, factors[m.constraint], settings,
-                         inverseH, bias, largestChange, softScale);
+            solveNormals<kMovesA>(a, b, m.normal, block, points, pointCount, factors[m.constraint],
+                                  settings, inverseH, bias, largestChange, softScale);
         }
         if (frictionAgain && m.friction > 0) {
             friction(a, b, points);
@@ -396,16 +403,25 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
             }
             friction(a, b, points);
         }
-        a.store(bodyA);
+        if (kMovesA)
+            a.store(bodyA);
         b.store(bodyB);
     };
-    for (const SweepManifold& m : manifolds_) {
+    // The plain sweep's manifolds whose A is the static body skip its updates; the others take
+    // the general code (B was the static body in none of pile-1000's or pile-4000's manifolds).
+    const auto solveMoving = [&]<bool kMovesA>(const SweepManifold& m) {
         if (m.pointCount == 1)
-            solveManifold.template operator()<1>(m);
+            solveManifold.template operator()<1, kMovesA>(m);
         else if (m.pointCount == 2)
-            solveManifold.template operator()<2>(m);
+            solveManifold.template operator()<2, kMovesA>(m);
         else
-            solveManifold.template operator()<0>(m);
+            solveManifold.template operator()<0, kMovesA>(m);
+    };
+    for (const SweepManifold& m : manifolds_) {
+        if (Plain && m.bodyA == 0)
+            solveMoving.template operator()<false>(m);
+        else
+            solveMoving.template operator()<true>(m);
     }
     return largestChange;
 }
