@@ -76,8 +76,9 @@ inline Real pointTarget(const Point& p, Real bias, Real slop, Real inverseH) {
 /// largestChange to the velocity change when settings.tolerance > 0. Body: as normalSpeed's.
 /// `softScale` (the soft step's biased sweep, or null): the rigid answer of each point that
 /// touches (separation <= 0) is scaled by it, which makes the row a spring-damper
-/// (docs/ARCHITECTURE.md, the soft step); speculative points stay rigid.
-template <class Body, class Point>
+/// (docs/ARCHITECTURE.md, the soft step); speculative points stay rigid. kMovesA: as
+/// applyNormal's.
+template <bool kMovesA = true, class Body, class Point>
 void solveNormals(Body& a, Body& b, const Vec3& normal, const Mat4* k, Point* points, int n,
                   NormalFactor& factor, const SolverSettings& settings, Real inverseH, Real bias,
                   Real& largestChange, const Real* softScale = nullptr) {
@@ -97,7 +98,7 @@ void solveNormals(Body& a, Body& b, const Vec3& normal, const Mat4* k, Point* po
             const Real soft = scale * (old - p.normalMass * vn);
             next = std::max<Real>(0, old + omega * (soft - old));
         }
-        applyNormal(a, b, normal, p, next - old);
+        applyNormal<kMovesA>(a, b, normal, p, next - old);
         p.normalImpulse = next;
         return;
     }
@@ -123,7 +124,7 @@ void solveNormals(Body& a, Body& b, const Vec3& normal, const Mat4* k, Point* po
         }
         next = (old + omega * (exact - old)).cwiseMax(0);
         for (int i = 0; i < n; ++i)
-            applyNormal(a, b, normal, points[i], next(i) - old(i));
+            applyNormal<kMovesA>(a, b, normal, points[i], next(i) - old(i));
     } else {
         // One point, or a degenerate block: the points one by one. The first sees the
         // velocities its gap was measured at (nothing has moved them since): its vn is gap(0),
@@ -140,7 +141,7 @@ void solveNormals(Body& a, Body& b, const Vec3& normal, const Mat4* k, Point* po
                 const Real soft = scale * (old(i) - p.normalMass * vn);
                 next(i) = std::max<Real>(0, old(i) + omega * (soft - old(i)));
             }
-            applyNormal(a, b, normal, p, next(i) - old(i));
+            applyNormal<kMovesA>(a, b, normal, p, next(i) - old(i));
         }
     }
     for (int i = 0; i < n; ++i)

@@ -176,11 +176,15 @@ inline Real normalSpeed(const Body& a, const Body& b, const Vec3& n, const Point
            p.angularA.dot(a.angularVelocity);
 }
 
-// A normal impulse lambda n on B at the point, -lambda n on A.
-template <class Body, class Point>
+// A normal impulse lambda n on B at the point, -lambda n on A. kMovesA false: A is the static
+// body 0 (SolverBody{}), whose zero velocities its updates leave +0 (+0 - (+-0) = +0, its inverse
+// mass and inertia being 0), so they are skipped (SweepRows::sweepPlain).
+template <bool kMovesA = true, class Body, class Point>
 inline void applyNormal(Body& a, Body& b, const Vec3& n, const Point& p, Real lambda) {
-    a.linearVelocity -= (a.inverseMass * lambda) * n;
-    a.angularVelocity -= lambda * p.angularImpulseA;
+    if constexpr (kMovesA) {
+        a.linearVelocity -= (a.inverseMass * lambda) * n;
+        a.angularVelocity -= lambda * p.angularImpulseA;
+    }
     b.linearVelocity += (b.inverseMass * lambda) * n;
     b.angularVelocity += lambda * p.angularImpulseB;
 }

@@ -6,6 +6,7 @@
 #include "contact_kernels.h"
 #include "normal_block.h"
 #include "slide_patch.h"
+#include "tumble/core/lane_kernel.h"
 #include "tumble/solver/contact_solver.h"
 
 namespace tumble {
@@ -55,7 +56,9 @@ struct SweepBody {
 // box model with its masses from the constraint. Returns the largest change when measuring.
 // The model and the measuring are template arguments, and the manifold's basis is held in
 // locals: the points' stores might alias it, so it was loaded again for every point.
-template <bool kCoupled, bool kMeasure>
+// kPoints: the manifold's point count when known at compile time (SweepRows::sweepWith), else 0.
+// kMovesA: as applyNormal's (normal_block.h).
+template <bool kCoupled, bool kMeasure, int kPoints, bool kMovesA>
 Real solveFriction(SweepBody& a, SweepBody& b, const SweepManifold& m, SweepPoint* points,
                    const ContactConstraint& c, Real omega) {
     Real largestChange = 0;
@@ -64,7 +67,7 @@ Real solveFriction(SweepBody& a, SweepBody& b, const SweepManifold& m, SweepPoin
     const Vec3& t1 = tangents[1];
     const Pair target = loadPair(m.tangentTarget.data());
     const Real friction = m.friction;
-    const int count = m.pointCount;
+    const int count = kPoints > 0 ? kPoints : m.pointCount;
     for (int i = 0; i < count; ++i) {
         SweepPoint& p = points[i];
         const Vec3 dv = b.linearVelocity - a.linearVelocity;
@@ -88,8 +91,11 @@ Real solveFriction(SweepBody& a, SweepBody& b, const SweepManifold& m, SweepPoin
             delta = next - old;
         }
         const Vec3 linear = delta.x() * t0 + delta.y() * t1;
-        a.linearVelocity -= a.inverseMass * linear;
-        a.angularVelocity -= delta.x() * p.tangentImpulseA[0] + delta.y() * p.tangentImpulseA[1];
+        if constexpr (kMovesA) {
+            a.linearVelocity -= a.inverseMass * linear;
+            a.angularVelocity -=
+                delta.x() * p.tangentImpulseA[0] + delta.y() * p.tangentImpulseA[1];
+        }
         b.linearVelocity += b.inverseMass * linear;
         b.angularVelocity += delta.x() * p.tangentImpulseB[0] + delta.y() * p.tangentImpulseB[1];
         p.tangentImpulse = {next.x(), next.y()};
@@ -99,15 +105,25 @@ Real solveFriction(SweepBody& a, SweepBody& b, const SweepManifold& m, SweepPoin
     return largestChange;
 }
 
+// What a sweep reads of the settings, read once: the points' stores might alias the settings,
+// so their fields were loaded again for every manifold.
+struct SweepSettings {
+    bool coupled;  ///< FrictionModel::Coupled
+    bool measure;  ///< tolerance > 0
+    Real omega;    ///< relaxation
+    Real slop;     ///< (m)
+};
+
+template <int kPoints, bool kMovesA>
 Real solveFriction(SweepBody& a, SweepBody& b, const SweepManifold& m, SweepPoint* points,
-                   const ContactConstraint& c, const SolverSettings& settings) {
-    const Real omega = settings.relaxation;
-    if (settings.friction == FrictionModel::Coupled) {
-        return settings.tolerance > 0 ? solveFriction<true, true>(a, b, m, points, c, omega)
-                                      : solveFriction<true, false>(a, b, m, points, c, omega);
+                   const ContactConstraint& c, const SweepSettings& s) {
+    if (s.coupled) {
+        return s.measure
+                   ? solveFriction<true, true, kPoints, kMovesA>(a, b, m, points, c, s.omega)
+                   : solveFriction<true, false, kPoints, kMovesA>(a, b, m, points, c, s.omega);
     }
-    return settings.tolerance > 0 ? solveFriction<false, true>(a, b, m, points, c, omega)
-                                  : solveFriction<false, false>(a, b, m, points, c, omega);
+    return s.measure ? solveFriction<false, true, kPoints, kMovesA>(a, b, m, points, c, s.omega)
+                     : solveFriction<false, false, kPoints, kMovesA>(a, b, m, points, c, s.omega);
 }
 
 // The soft step's patch of a manifold of several points (slide_patch.h), on the sweep's copies:
@@ -255,19 +271,39 @@ void SweepRows::add(const ContactConstraint& c, std::uint32_t index,
 Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                       std::span<NormalFactor> factors, const SolverSettings& settings,
                       Real inverseH, Real bias, const Real* softScales, bool patches) {
-    return patches
-               ? sweepWith<true>(bodies, constraints, factors, settings, inverseH, bias, softScales)
-               : sweepWith<false>(bodies, constraints, factors, settings, inverseH, bias,
-                                  softScales);
+    if (patches)
+        return sweepWith<true, false>(bodies, constraints, factors, settings, inverseH, bias,
+                                      softScales);
+    if (softScales == nullptr && !(settings.tolerance > 0) &&
+        settings.friction == FrictionModel::Coupled)
+        return sweepPlain(bodies, constraints, factors, settings, inverseH, bias);
+    return sweepWith<false, false>(bodies, constraints, factors, settings, inverseH, bias,
+                                   softScales);
+}
+
+TUMBLE_LANE_KERNEL Real SweepRows::sweepPlain(std::span<SolverBody> bodies,
+                                              std::span<ContactConstraint> constraints,
+                                              std::span<NormalFactor> factors,
+                                              const SolverSettings& settings, Real inverseH,
+                                              Real bias) {
+    return sweepWith<false, true>(bodies, constraints, factors, settings, inverseH, bias, nullptr);
 }
 
 // The default step's sweeps never take a patch: compiled without the patches' branches. Flat
 // (sweep_rows.h), since with two callers GCC would call the kernels out of line: the patches'
 // branches alone cost +16 % on pile-1000's sweeps, two plain instantiations +14 %.
-template <bool Patches>
+// Plain: the default step's (no soft scales, not measuring, coupled friction), whose tests on
+// them fold.
+template <bool Patches, bool Plain>
 Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
-                          std::span<NormalFactor> factors, const SolverSettings& settings,
-                          Real inverseH, Real bias, const Real* softScales) {
+                          std::span<NormalFactor> factors, const SolverSettings& given,
+                          Real inverseH, Real bias, const Real* softScalesGiven) {
+    const Real* softScales = Plain ? nullptr : softScalesGiven;
+    // A local copy, which the points' stores cannot alias: its fields are not loaded again for
+    // every manifold, and a plain sweep's tolerance is known to be 0.
+    SolverSettings settings = given;
+    if (Plain)
+        settings.tolerance = 0;
     Real largestChange = 0;
     // The targets are the same in every sweep of a phase (biased, relax): the first computes
     // them. Compared as bits, so a -0 bias or a NaN is not taken for another value.
@@ -279,15 +315,30 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
     targetInputs_ = inputs;
     if (Patches && softScales != nullptr)
         slidBiased_.assign(manifolds_.size(), 0);  // capacity kept from step to step
-    for (const SweepManifold& m : manifolds_) {
+    const SweepSettings local{Plain || settings.friction == FrictionModel::Coupled,
+                              settings.tolerance > 0, settings.relaxation, settings.slop};
+    // One manifold's rows, with its point count a constant when kPoints > 0 (0: m.pointCount):
+    // the points' loops unroll and the one-point tests fold, the same operations in the same
+    // order. Most of a pile's manifolds have one or two points (1.23 on average). kMovesA false:
+    // A is the static body 0, whose updates leave it +0 and are skipped (applyNormal); a fifth
+    // to a quarter of a pile's manifolds lie on its floor and walls.
+    const auto solveManifold = [&]<int kPoints, bool kMovesA>(const SweepManifold& m) {
+        const int pointCount = kPoints > 0 ? kPoints : m.pointCount;
+        // Not measuring, the friction's change is 0 and leaves the largest as it is.
+        const auto friction = [&](SweepBody& a, SweepBody& b, SweepPoint* points) {
+            const Real change =
+                solveFriction<kPoints, kMovesA>(a, b, m, points, constraints[m.constraint], local);
+            if (local.measure)
+                largestChange = std::max(largestChange, change);
+        };
         SolverBody& bodyA = bodies[m.bodyA];
         SolverBody& bodyB = bodies[m.bodyB];
         SweepBody a(bodyA);
         SweepBody b(bodyB);
         SweepPoint* points = points_.data() + m.firstPoint;
         if (refresh) {
-            for (int i = 0; i < m.pointCount; ++i)
-                points[i].target = normalTarget(points[i], bias, settings.slop, inverseH);
+            for (int i = 0; i < pointCount; ++i)
+                points[i].target = normalTarget(points[i], bias, local.slop, inverseH);
         }
         // Friction first, with the normal impulses of the last sweep: non-penetration, solved
         // last, matters more. The soft step's biased sweep leaves the friction of exactly
@@ -296,14 +347,13 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
         // The soft step's relax sweep solves a lone point's friction again after its normal
         // row, so its bound is the substep's whole normal impulse (ContactSolver::softSweep).
         const bool frictionAgain =
-            Patches && softScales == nullptr && m.pointCount == 1 && !m.grouped;
+            Patches && softScales == nullptr && pointCount == 1 && !m.grouped;
         if (m.friction > 0 && !(m.grouped && softScales != nullptr)) {
-            if (Patches && m.pointCount > 1 && settings.friction == FrictionModel::Coupled &&
-                !patchSticks(a, b, m, points)) {
+            if (Patches && pointCount > 1 && local.coupled && !patchSticks(a, b, m, points)) {
                 slid = onPatch(a, b, bodyA, bodyB, m, points,
                                [&](PatchBodies& on, std::span<PatchPoint> patch) {
                                    return slidePatch(on, m.normal, m.tangents(), m.tangentTarget,
-                                                     m.friction, settings.relaxation, patch);
+                                                     m.friction, local.omega, patch);
                                });
             }
             // The biased sweep keeps a sliding face's patch: the points' rows would meet the
@@ -313,16 +363,14 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
             if (Patches && softScales != nullptr)
                 slidBiased_[&m - manifolds_.data()] = slid ? 1 : 0;
             if (!(slid && softScales != nullptr)) {
-                largestChange =
-                    std::max(largestChange,
-                             solveFriction(a, b, m, points, constraints[m.constraint], settings));
+                friction(a, b, points);
             }
         }
         // The soft step's relax sweep solves them after its normal rows (ContactSolver::softSweep).
         const bool angularLast = Patches && softScales == nullptr;
         if (m.angular && !angularLast) {
             largestChange = std::max(largestChange, angularRows(a, b, bodyA, bodyB, m, points,
-                                                                constraints, settings.relaxation));
+                                                                constraints, local.omega));
         }
         if (!m.grouped) {
             const Mat4* block = m.block == SweepManifold::kNoBlock ? nullptr : &blocks_[m.block];
@@ -330,36 +378,50 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
             const Real* softScale = softScales == nullptr
                                         ? nullptr
                                         : softScales + (m.bodyA == 0 || m.bodyB == 0 ? 2 : 1);
-            solveNormals(a, b, m.normal, block, points, m.pointCount, factors[m.constraint],
-                         settings, inverseH, bias, largestChange, softScale);
+            solveNormals<kMovesA>(a, b, m.normal, block, points, pointCount, factors[m.constraint],
+                                  settings, inverseH, bias, largestChange, softScale);
         }
         if (frictionAgain && m.friction > 0) {
-            largestChange = std::max(
-                largestChange, solveFriction(a, b, m, points, constraints[m.constraint], settings));
+            friction(a, b, points);
         }
         if (m.angular && angularLast) {
             largestChange = std::max(largestChange, angularRows(a, b, bodyA, bodyB, m, points,
-                                                                constraints, settings.relaxation));
+                                                                constraints, local.omega));
         }
         // A face whose patch slid in either sweep of the substep is solved again at the relax
         // sweep's normals (slide_patch.cpp says why): its patch, then its points' rows. Only such
         // a face: the rest kept their bits (onPatch's gather on every face of several points was
         // a fifth of the patch's cost).
-        if (Patches && softScales == nullptr && !m.grouped && m.friction > 0 && m.pointCount > 1 &&
-            settings.friction == FrictionModel::Coupled &&
-            (slid || slidBiased_[&m - manifolds_.data()] != 0)) {
+        if (Patches && softScales == nullptr && !m.grouped && m.friction > 0 && pointCount > 1 &&
+            local.coupled && (slid || slidBiased_[&m - manifolds_.data()] != 0)) {
             if (!patchSticks(a, b, m, points)) {
                 onPatch(a, b, bodyA, bodyB, m, points,
                         [&](PatchBodies& on, std::span<PatchPoint> patch) {
                             return slidePatch(on, m.normal, m.tangents(), m.tangentTarget,
-                                              m.friction, settings.relaxation, patch);
+                                              m.friction, local.omega, patch);
                         });
             }
-            largestChange = std::max(
-                largestChange, solveFriction(a, b, m, points, constraints[m.constraint], settings));
+            friction(a, b, points);
         }
-        a.store(bodyA);
+        if (kMovesA)
+            a.store(bodyA);
         b.store(bodyB);
+    };
+    // The plain sweep's manifolds whose A is the static body skip its updates; the others take
+    // the general code (B was the static body in none of pile-1000's or pile-4000's manifolds).
+    const auto solveMoving = [&]<bool kMovesA>(const SweepManifold& m) {
+        if (m.pointCount == 1)
+            solveManifold.template operator()<1, kMovesA>(m);
+        else if (m.pointCount == 2)
+            solveManifold.template operator()<2, kMovesA>(m);
+        else
+            solveManifold.template operator()<0, kMovesA>(m);
+    };
+    for (const SweepManifold& m : manifolds_) {
+        if (Plain && m.bodyA == 0)
+            solveMoving.template operator()<false>(m);
+        else
+            solveMoving.template operator()<true>(m);
     }
     return largestChange;
 }

@@ -1,7 +1,7 @@
-// The trajectory hash of a few contact scenes on the coloured wide rows, printed as hex. Built
-// twice (tests/CMakeLists.txt): with the lane kernels as the library has them -- on GCC for
-// x86-64 an AVX2 and a baseline copy, the AVX2 one picked on a machine that has it -- and with
-// contact_rows.cpp and contact_solver.cpp (prepare's pass) compiled again under
+// The trajectory hash of a few contact scenes on the coloured wide rows and on the scalar sweep
+// (SweepRows), printed as hex. Built twice (tests/CMakeLists.txt): with the lane kernels as the
+// library has them -- on GCC for x86-64 an AVX2 and a baseline copy, the AVX2 one picked on a
+// machine that has it -- and with the files that have kernels compiled again under
 // TUMBLE_NO_LANE_CLONES, the baseline copy alone. The test solver.lane-clone-bits compares the
 // two prints: contact_rows.h and lane_kernel.h promise the same bits.
 #include <cstdint>
@@ -16,9 +16,9 @@ namespace {
 
 using namespace tumble;
 
-WorldDef colouredDef() {
+WorldDef colouredDef(bool coloured = true) {
     WorldDef def;
-    def.solver.colouredContacts = true;
+    def.solver.colouredContacts = coloured;
     return def;
 }
 
@@ -50,6 +50,18 @@ int main() {
         rain.half = 1.2;
         rain.material.spinningFriction = 0.01;
         rain.material.rollingFriction = 0.005;
+        rain.addContainer(world);
+        std::vector<BodyId> bodies;
+        for (int i = 0; i < 3 * rain.perWave(); ++i)
+            bodies.push_back(rain.addBody(world, i));
+        run(world, bodies, 120, trajectory);
+    }
+    {
+        // The same pile on the scalar sweep (SweepRows::sweepPlain, one- and two-point
+        // manifolds among the others).
+        World world(colouredDef(false));
+        testkit::Rain rain;
+        rain.half = 1.2;
         rain.addContainer(world);
         std::vector<BodyId> bodies;
         for (int i = 0; i < 3 * rain.perWave(); ++i)

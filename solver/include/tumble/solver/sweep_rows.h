@@ -107,12 +107,19 @@ public:
 private:
     /// The points added since clear().
     std::span<SweepPoint> points() { return {points_.data(), pointCount_}; }
-    /// sweep() with `patches` fixed at compile time (sweep_rows.cpp says why).
-    template <bool Patches>
+    /// sweep() with `patches`, and whether it is the default step's plain sweep (no soft scales,
+    /// not measuring, coupled friction), fixed at compile time (sweep_rows.cpp says why).
+    template <bool Patches, bool Plain>
     [[gnu::flatten]] Real sweepWith(std::span<SolverBody> bodies,
                                     std::span<ContactConstraint> constraints,
-                                    std::span<NormalFactor> factors, const SolverSettings& settings,
-                                    Real inverseH, Real bias, const Real* softScales);
+                                    std::span<NormalFactor> factors, const SolverSettings& given,
+                                    Real inverseH, Real bias, const Real* softScalesGiven);
+
+    /// sweepWith<false, true>, the default step's sweep, as a lane kernel (lane_kernel.h): its
+    /// AVX2 copy's three-operand instructions save the baseline's register copies.
+    Real sweepPlain(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
+                    std::span<NormalFactor> factors, const SolverSettings& settings, Real inverseH,
+                    Real bias);
 
     std::vector<SweepManifold> manifolds_;
     /// The first pointCount_ are this step's; the rest is storage kept for the next steps.
