@@ -268,6 +268,27 @@ void SweepRows::add(const ContactConstraint& c, std::uint32_t index,
     }
 }
 
+namespace {
+// The plain sweep skips body 0's updates, which is exact only while body 0 is the static
+// SolverBody{} (every +0: the engine's solver body 0, joints.cpp). A caller whose body 0 moves
+// gets the general sweep: the same operations, so the same bits, at its cost.
+bool staticBodyZero(std::span<const SolverBody> bodies) {
+    if (bodies.empty())
+        return false;
+    const SolverBody& s = bodies[0];
+    const auto zero = [](Real x) { return std::bit_cast<std::uint64_t>(x) == 0; };
+    if (!zero(s.inverseMass))
+        return false;
+    for (int i = 0; i < 3; ++i)
+        if (!zero(s.linearVelocity[i]) || !zero(s.angularVelocity[i]))
+            return false;
+    for (int i = 0; i < 9; ++i)
+        if (!zero(s.inverseInertia.data()[i]))
+            return false;
+    return true;
+}
+}  // namespace
+
 Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                       std::span<NormalFactor> factors, const SolverSettings& settings,
                       Real inverseH, Real bias, const Real* softScales, bool patches) {
@@ -275,7 +296,7 @@ Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint>
         return sweepWith<true, false>(bodies, constraints, factors, settings, inverseH, bias,
                                       softScales);
     if (softScales == nullptr && !(settings.tolerance > 0) &&
-        settings.friction == FrictionModel::Coupled)
+        settings.friction == FrictionModel::Coupled && staticBodyZero(bodies))
         return sweepPlain(bodies, constraints, factors, settings, inverseH, bias);
     return sweepWith<false, false>(bodies, constraints, factors, settings, inverseH, bias,
                                    softScales);
