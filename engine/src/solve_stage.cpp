@@ -88,7 +88,7 @@ std::span<ContactConstraint> SolveStage::buildConstraints(const BodyStore& bodie
                                                           const ContactManager& contacts,
                                                           const StepContext& context) {
     std::size_t count = 0;
-    constraintContact_.clear();
+    constraintSources_.clear();
     for (const std::uint32_t slot : contacts.touchingSlots()) {
         const Contact& contact = contacts.contact(slot);
         if (!contacts.isActive(slot) || contact.manifold.pointCount == 0)
@@ -107,7 +107,7 @@ std::span<ContactConstraint> SolveStage::buildConstraints(const BodyStore& bodie
         c.bodyA = solverBodyIndex(bodies, indexA);
         c.bodyB = solverBodyIndex(bodies, indexB);
         fillConstraint(c, contact, bodies, indexA, indexB, materialA, materialB, context.inverseH);
-        constraintContact_.push_back(slot);
+        constraintSources_.push_back({slot, indexA, indexB});
     }
     return std::span<ContactConstraint>(constraints_).first(count);
 }
@@ -160,9 +160,9 @@ void SolveStage::storeImpulses(ContactManager& contacts, std::span<ContactConstr
         ContactConstraint& c = constraints[j];
         if (anchored) {  // equilibrated before release reads the manifold's friction share
             equilibrateFriction(c);
-            anchors_.release(constraintContact_[j], c);
+            anchors_.release(constraintSources_[j].slot, c);
         }
-        Contact& contact = contacts.contact(constraintContact_[j]);
+        Contact& contact = contacts.contact(constraintSources_[j].slot);
         contact.angularImpulse = c.angularImpulse;
         for (int i = 0; i < c.pointCount; ++i) {
             contact.normalImpulse[i] = c.points[i].normalImpulse;
@@ -292,10 +292,9 @@ void SolveStage::holdAnchors(const BodyStore& bodies, const ContactManager& cont
 void SolveStage::anchorDrift(const BodyStore& bodies, const ContactManager& contacts, std::size_t j,
                              const ContactConstraint& c, Real h, const AnchorLengths& lengths,
                              bool reseatStale) {
-    const std::uint32_t slot = constraintContact_[j];
-    const Contact& contact = contacts.contact(slot);
-    anchors_.drifts(slot, contact, bodies.motion[bodies.indexOf(contact.bodyA)],
-                    bodies.motion[bodies.indexOf(contact.bodyB)], h, c, lengths, reseatStale,
+    const ConstraintSource& source = constraintSources_[j];
+    anchors_.drifts(source.slot, contacts.contact(source.slot), bodies.motion[source.indexA],
+                    bodies.motion[source.indexB], h, c, lengths, reseatStale,
                     &anchorDrifts_[4 * j]);
 }
 
