@@ -139,8 +139,8 @@ bool AnchorTable::slips(const ContactConstraint& c) {
     return c.friction == 0 || friction >= kSlipShare * limit;
 }
 
-void AnchorTable::release(std::uint32_t slot, const ContactConstraint& c) {
-    if (slot < entries_.size() && slips(c))
+void AnchorTable::release(std::uint32_t slot, bool slips) {
+    if (slips && slot < entries_.size())
         entries_[slot].count = 0;
 }
 

@@ -33,9 +33,9 @@ public:
     void drifts(std::uint32_t slot, const Contact& contact, const BodyMotion& a,
                 const BodyMotion& b, Real h, const ContactConstraint& c,
                 const AnchorLengths& lengths, bool reseatStale, Vec3* drifts);
-    /// After the solve: a manifold whose friction reached its Coulomb limit slips as a whole,
-    /// and its anchors are seated afresh next step.
-    void release(std::uint32_t slot, const ContactConstraint& c);
+    /// After the solve: a manifold whose friction reached its Coulomb limit slips as a whole
+    /// (`slips`: slips() of its constraint), and its anchors are seated afresh next step.
+    void release(std::uint32_t slot, bool slips);
     /// Whether the manifold's friction impulses reach the share of mu sum(lambda_n) at which it
     /// slips as a whole.
     static bool slips(const ContactConstraint& c);

@@ -142,8 +142,10 @@ void SolveStage::addSoftSlips(std::span<const ContactConstraint> constraints) {
 void SolveStage::holdSoftAnchors(BodyStore& bodies, std::span<const ContactConstraint> constraints,
                                  const StepContext& context, const AnchorLengths& lengths) {
     addSoftSlips(constraints);
+    slipping_.resize(constraints.size());
     for (std::size_t j = 0; j < constraints.size(); ++j) {
-        if (AnchorTable::slips(constraints[j]))
+        slipping_[j] = AnchorTable::slips(constraints[j]) ? 1 : 0;
+        if (slipping_[j] != 0)
             std::fill_n(&anchorDrifts_[4 * j], 4, Vec3::Zero());
     }
     pseudo_.assign(solverBodies_.size(), PseudoVelocity{});

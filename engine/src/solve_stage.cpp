@@ -159,8 +159,11 @@ void SolveStage::storeImpulses(ContactManager& contacts, std::span<ContactConstr
     for (std::size_t j = 0; j < constraints.size(); ++j) {
         ContactConstraint& c = constraints[j];
         if (anchored) {  // equilibrated before release reads the manifold's friction share
-            equilibrateFriction(c);
-            anchors_.release(constraintSources_[j].slot, c);
+            // The anchor pass measured the share on these impulses, unless this changed them.
+            const bool changed = equilibrateFriction(c);
+            const bool slips = (changed || slipping_[j] == kUnmeasured) ? AnchorTable::slips(c)
+                                                                        : slipping_[j] != 0;
+            anchors_.release(constraintSources_[j].slot, slips);
         }
         Contact& contact = contacts.contact(constraintSources_[j].slot);
         contact.angularImpulse = c.angularImpulse;
@@ -280,9 +283,13 @@ void SolveStage::holdAnchors(const BodyStore& bodies, const ContactManager& cont
                              const StepContext& context, const AnchorLengths& lengths) {
     anchors_.beginSolve();
     anchorDrifts_.assign(4 * constraints.size(), Vec3::Zero());
+    slipping_.assign(constraints.size(), kUnmeasured);
     for (std::size_t j = 0; j < constraints.size(); ++j) {
         const ContactConstraint& c = constraints[j];
-        if (sprung_[c.bodyA] != 0 || sprung_[c.bodyB] != 0 || AnchorTable::slips(c))
+        if (sprung_[c.bodyA] != 0 || sprung_[c.bodyB] != 0)
+            continue;
+        slipping_[j] = AnchorTable::slips(c) ? 1 : 0;
+        if (slipping_[j] != 0)
             continue;
         anchorDrift(bodies, contacts, j, c, context.h, lengths, true);
     }

@@ -192,10 +192,10 @@ void FrictionAnchorPass::run(std::span<const SolverBody> bodies,
 // sum d_i x f_i = M (d_i: the point from the load-weighted centre, on the tangent plane). The
 // Lagrange conditions give f_i = w_i (a + s perp(d_i)); sum w_i d_i = 0 separates the two:
 // a = F / sum w_i, s = M / sum w_i |d_i|^2.
-void equilibrateFriction(ContactConstraint& c) {
+bool equilibrateFriction(ContactConstraint& c) {
     const int n = c.pointCount;
     if (n < 2 || c.friction == 0 || !crowded(c))
-        return;
+        return false;
     std::array<Vec2, 4> d;
     Real load = 0;  // N s
     Vec2 center = Vec2::Zero();
@@ -208,7 +208,7 @@ void equilibrateFriction(ContactConstraint& c) {
         force += Vec2(p.tangentImpulse[0], p.tangentImpulse[1]);
     }
     if (load <= 0)
-        return;
+        return false;
     center /= load;
     Real moment = 0;  // N m s
     Real spread = 0;  // N s m^2
@@ -221,7 +221,7 @@ void equilibrateFriction(ContactConstraint& c) {
     // One loaded point (or all at the centre) cannot carry a moment by its friction: keep what
     // the solve found.
     if (spread <= 0 && moment != 0)
-        return;
+        return false;
     const Vec2 shift = force / load;
     const Real spin = spread > 0 ? moment / spread : 0;
     std::array<Vec2, 4> f;
@@ -235,13 +235,14 @@ void equilibrateFriction(ContactConstraint& c) {
             std::max(before, share(std::hypot(p.tangentImpulse[0], p.tangentImpulse[1]), limit));
         const Real next = share(f[i].norm(), limit);
         if (!(next <= 1 + kDiscTolerance))  // off its disc, or not finite
-            return;
+            return false;
         after = std::max(after, next);
     }
     if (!(before >= kCrowdedShare && after < before))
-        return;
+        return false;
     for (int i = 0; i < n; ++i)
         c.points[i].tangentImpulse = {f[i].x(), f[i].y()};
+    return true;
 }
 
 }  // namespace tumble

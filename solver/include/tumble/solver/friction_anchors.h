@@ -18,8 +18,8 @@ namespace tumble {
 /// The points are taken as one plane, as a manifold's are (the tipping moment of the tangential
 /// impulses is then fixed by their sum). Left as solved where that distribution would take a
 /// point off its disc (sliding or spinning at the limit). Call after a solve, on the impulses to
-/// be carried.
-void equilibrateFriction(ContactConstraint& c);
+/// be carried. Returns whether it changed them (false: c is as it was).
+bool equilibrateFriction(ContactConstraint& c);
 
 /// The anchors' lengths, from the scene's own length settings, so that a scene scaled by
 /// dynamic similarity (lengths by s: slop, margins) keeps its anchors in proportion: fixed in
