@@ -78,6 +78,7 @@ TUMBLE_LANE_KERNEL void AnchorTable::driftsOf(Entry& entry, std::uint64_t solve,
     bool seat = entry.solve + 1 != solve || entry.count == 0;
     entry.solve = solve;
     Entry kept = entry;  // the anchors in this step's point order
+    Real apart = 0;      // largest(drifts, c.pointCount) once every point kept its anchors
     for (int i = 0; i < c.pointCount && !seat; ++i) {
         const std::uint32_t feature = contact.manifold.points[i].featureId;
         int k = 0;
@@ -95,11 +96,16 @@ TUMBLE_LANE_KERNEL void AnchorTable::driftsOf(Entry& entry, std::uint64_t solve,
         const Real away =
             onPlane(0.5 * (onA + onB) - contact.manifold.points[i].position, n).norm();
         drifts[i] = onPlane(onB - onA, n);
-        seat = away >= lengths.reach || away > lengths.deadband + 2 * drifts[i].norm();
+        if (away >= lengths.reach) {
+            seat = true;
+            break;
+        }
+        const Real drift = drifts[i].norm();
+        apart = std::max(apart, drift);
+        seat = away > lengths.deadband + 2 * drift;
     }
     bool reseated = false;
     if (!seat && reseatStale) {
-        const Real apart = largest(drifts, c.pointCount);
         kept.reseated = kept.reseated && apart > lengths.deadband;
         reseated = !kept.reseated && stale(entry.drift, apart, lengths);
         seat = reseated;
