@@ -130,6 +130,22 @@ void sweepManifold(SolverBody& a, SolverBody& b, const ContactConstraint& c, con
         holdNormals<N>(a, b, c, rows, inverse);
 }
 
+// sweepManifold on copies of the two bodies, their velocities stored back once: through the
+// references, every update was stored and loaded again, and the constraint's fields with it
+// (the compiler cannot tell the bodies from each other, from the rows or from the constraint).
+// Two bodies, so each one's updates are the same operations in the same order.
+template <int N>
+void sweepManifoldApart(SolverBody& a, SolverBody& b, const ContactConstraint& c, const Vec3* pulls,
+                        Vec3* rows, const Mat4& inverse) {
+    SolverBody localA = a;
+    SolverBody localB = b;
+    sweepManifold<N>(localA, localB, c, pulls, rows, inverse);
+    a.linearVelocity = localA.linearVelocity;
+    a.angularVelocity = localA.angularVelocity;
+    b.linearVelocity = localB.linearVelocity;
+    b.angularVelocity = localB.angularVelocity;
+}
+
 // The pass's arithmetic over its active manifolds: the normal speeds, pulls and normal block
 // inverses it starts from, then its sweeps. Compiled for AVX2 and the baseline like the contact
 // kernels (lane_kernel.h, the same bits): the baseline's two-operand SSE2 copied every Eigen
@@ -154,7 +170,10 @@ TUMBLE_LANE_KERNEL void sweepAnchors(SolverBody* bodies, const ContactConstraint
             SolverBody& a = bodies[c.bodyA];
             SolverBody& b = bodies[c.bodyB];
             withPointCount(c.pointCount, [&]<int N>() {
-                sweepManifold<N>(a, b, c, &pulls[4 * k], &rows[4 * k], inverses[k]);
+                if (&a != &b)
+                    sweepManifoldApart<N>(a, b, c, &pulls[4 * k], &rows[4 * k], inverses[k]);
+                else
+                    sweepManifold<N>(a, b, c, &pulls[4 * k], &rows[4 * k], inverses[k]);
             });
         }
     }
