@@ -210,8 +210,9 @@ void FrictionAnchorPass::run(std::span<const SolverBody> bodies,
 // Minimise sum |f_i|^2 / w_i (w_i = lambda_n,i) subject to sum f_i = F and
 // sum d_i x f_i = M (d_i: the point from the load-weighted centre, on the tangent plane). The
 // Lagrange conditions give f_i = w_i (a + s perp(d_i)); sum w_i d_i = 0 separates the two:
-// a = F / sum w_i, s = M / sum w_i |d_i|^2.
-bool equilibrateFriction(ContactConstraint& c) {
+// a = F / sum w_i, s = M / sum w_i |d_i|^2. Compiled for AVX2 and the baseline like the pass
+// (lane_kernel.h, the same bits): most of pyramid-20's manifolds get past crowded().
+TUMBLE_LANE_KERNEL bool equilibrateFriction(ContactConstraint& c) {
     const int n = c.pointCount;
     if (n < 2 || c.friction == 0 || !crowded(c))
         return false;
