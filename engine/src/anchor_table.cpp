@@ -57,15 +57,8 @@ bool stale(Real last, Real apart, const AnchorLengths& lengths) {
 // bodies' spins, which velocities sticking at the start of the step do not follow (on a turning
 // platform a point falls behind a straight line by omega^2 r h^2 / 2 per step: 0.46 mm at the
 // issue's slip speed).
-void AnchorTable::drifts(std::uint32_t slot, const Contact& contact, const BodyMotion& a,
-                         const BodyMotion& b, Real h, const ContactConstraint& c,
-                         const AnchorLengths& lengths, bool reseatStale, Vec3* drifts) {
-    if (entries_.size() <= slot)
-        entries_.resize(slot + 1);
-    driftsOf(entries_[slot], solve_, contact, a, b, h, c, lengths, reseatStale, drifts);
-}
-
-// drifts() on its entry. Compiled for AVX2 and the baseline like the solver's kernels
+//
+// driftsOf: drifts() on its entry. Compiled for AVX2 and the baseline like the solver's kernels
 // (lane_kernel.h, the same bits): the baseline's two-operand SSE2 copied every temporary of the
 // rotations and projections through extra registers (4.3 % of pyramid-20's instructions).
 TUMBLE_LANE_KERNEL void AnchorTable::driftsOf(Entry& entry, std::uint64_t solve,

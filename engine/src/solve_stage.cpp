@@ -296,15 +296,6 @@ void SolveStage::holdAnchors(const BodyStore& bodies, const ContactManager& cont
     anchorPass_.run(solverBodies_, constraints, anchorDrifts_, pseudo_, context.inverseH, lengths);
 }
 
-void SolveStage::anchorDrift(const BodyStore& bodies, const ContactManager& contacts, std::size_t j,
-                             const ContactConstraint& c, Real h, const AnchorLengths& lengths,
-                             bool reseatStale) {
-    const ConstraintSource& source = constraintSources_[j];
-    anchors_.drifts(source.slot, contacts.contact(source.slot), bodies.motion[source.indexA],
-                    bodies.motion[source.indexB], h, c, lengths, reseatStale,
-                    &anchorDrifts_[4 * j]);
-}
-
 // A row's geometry at the positions the step ended on.
 SolveStage::ProjectedGeometry SolveStage::projectedGeometry(const BodyStore& bodies,
                                                             const SpringStore& springs,

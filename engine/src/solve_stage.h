@@ -86,10 +86,15 @@ private:
                       const StepContext& context, const SolverSettings& settings);
     /// Constraint j's (c's) anchors kept or seated and their drifts, over a step h, into
     /// anchorDrifts_ (AnchorTable::drifts; `reseatStale`: the default step's, whose drifts are
-    /// complete there).
+    /// complete there). Inline: holdAnchors calls it for every constraint.
     void anchorDrift(const BodyStore& bodies, const ContactManager& contacts, std::size_t j,
                      const ContactConstraint& c, Real h, const AnchorLengths& lengths,
-                     bool reseatStale);
+                     bool reseatStale) {
+        const ConstraintSource& source = constraintSources_[j];
+        anchors_.drifts(source.slot, contacts.contact(source.slot), bodies.motion[source.indexA],
+                        bodies.motion[source.indexB], h, c, lengths, reseatStale,
+                        &anchorDrifts_[4 * j]);
+    }
     /// The soft step's friction anchors (soft_step.cpp): their drifts as the default step's,
     /// at the step's start; after the substeps, the anchor pass as one displacement.
     void seatSoftAnchors(const BodyStore& bodies, const ContactManager& contacts,
