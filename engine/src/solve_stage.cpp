@@ -93,8 +93,9 @@ std::span<ContactConstraint> SolveStage::buildConstraints(const BodyStore& bodie
         const Contact& contact = contacts.contact(slot);
         if (!contacts.isActive(slot) || contact.manifold.pointCount == 0)
             continue;
-        const std::uint32_t indexA = bodies.indexOf(contact.bodyA);
-        const std::uint32_t indexB = bodies.indexOf(contact.bodyB);
+        // Live while the contact is (shapePose says why): unchecked, as the narrowphase's.
+        const std::uint32_t indexA = bodies.checkedIndexOf(contact.bodyA);
+        const std::uint32_t indexB = bodies.checkedIndexOf(contact.bodyB);
         // A sleeping body resting on a kinematic body at rest: the pair stays collided (the
         // kinematic body may move) but the sleeper is not solved.
         if (bodies.isSleeping(indexA) || bodies.isSleeping(indexB))
