@@ -142,6 +142,8 @@ private:
     void fill(Bundle& bundle, int lane, const ContactConstraint& c, std::uint32_t index, Real slop,
               Real inverseH);
     Real solveFriction(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6]);
+    template <int kPoints, bool kPlain>
+    Real solveFrictionLanes(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6]);
     /// The sliding patch (slide_patch.h) of each lane of several points in `only` (bit per
     /// lane), lane by lane; `soft` leaves the lanes of exactly solved groups, as the biased
     /// sweep's friction does. Returns the lanes that slid (bit per lane), which the relax sweep
