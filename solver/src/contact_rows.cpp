@@ -351,6 +351,11 @@ template <int kPoints, bool kPlain>
             delta0 = next0 - old0;
             delta1 = next1 - old1;
         }
+        // Stored before the velocities' update, which then reads v again after these stores
+        // (they might alias it): stored after, the values read for vt were kept for the update,
+        // in spill slots, six stores more a point (pyramid-20).
+        q.tangentImpulse[0] = next0;
+        q.tangentImpulse[1] = next1;
         for (int k = 0; k < 3; ++k) {
             const Lane linear = delta0 * bundle.tangents[0][k] + delta1 * bundle.tangents[1][k];
             v[0][k] -= bundle.inverseMassA * linear;
@@ -358,8 +363,6 @@ template <int kPoints, bool kPlain>
             v[1][k] += bundle.inverseMassB * linear;
             v[1][3 + k] += delta0 * q.tangentImpulseB[0][k] + delta1 * q.tangentImpulseB[1][k];
         }
-        q.tangentImpulse[0] = next0;
-        q.tangentImpulse[1] = next1;
         if (measure) {
             const Lane* k = q.tangentBlock;
             const Lane change0 = k[0] * delta0 + k[1] * delta1;
