@@ -181,6 +181,13 @@ TUMBLE_LANE_KERNEL void ContactRows::gather(const Bundle& bundle, Lane (&v)[2][6
 // velocity back. Lane by lane, A before B, as the element-wise stores were: the same last
 // writer for each value.
 TUMBLE_LANE_KERNEL void ContactRows::scatter(const Bundle& bundle, const Lane (&v)[2][6]) {
+    scatterLanes(bundle, v);
+}
+
+// scatter's body, inline so that solveNormals' copies take it in: called, it was a call from
+// the AVX2 copy to the AVX2 copy with its vzeroupper and four spilled lanes around it.
+[[gnu::always_inline]] inline void ContactRows::scatterLanes(const Bundle& bundle,
+                                                             const Lane (&v)[2][6]) {
     Pair rows[4][2][3];  // lane, side, pair of values
     for (int side = 0; side < 2; ++side) {
         for (int k = 0; k < 6; k += 2) {
@@ -485,11 +492,25 @@ Real ContactRows::solveAngularAlone(Bundle& bundle, int lane, std::span<const So
 // one factored -- the first set solveNormalBlock tries, solved with the same factor; the
 // inactive rows of the embedded factor are the identity with a zero right-hand side, so they
 // stay zero. A lane whose set changed, or whose answer fails the set's checks, is solved alone.
+// A pyramid's four-point bundles have their own copy: the loops over the points without their
+// tests of the count (pyramid-20: ~30 of the kernel's ~720 instructions a bundle).
 TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
                                                   std::span<ContactConstraint> constraints,
                                                   std::span<NormalFactor> factors,
                                                   const SolverSettings& settings, Real bias,
                                                   Real inverseH, bool soft, Lane (&v)[2][6]) {
+    if (bundle.maxPoints == 4) {
+        return solveNormalsLanes<4>(bundle, constraints, factors, settings, bias, inverseH, soft,
+                                    v);
+    }
+    return solveNormalsLanes<0>(bundle, constraints, factors, settings, bias, inverseH, soft, v);
+}
+
+// kPoints: the bundle's point slots, or 0 for bundle.maxPoints.
+template <int kPoints>
+[[gnu::always_inline]] inline Real ContactRows::solveNormalsLanes(
+    Bundle& bundle, std::span<ContactConstraint> constraints, std::span<NormalFactor> factors,
+    const SolverSettings& settings, Real bias, Real inverseH, bool soft, Lane (&v)[2][6]) {
     const Lane omega = splat(settings.relaxation);
     const Lane biasH = splat(bias * inverseH);
     Lane dv[3];
@@ -502,7 +523,7 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
     // Slots past maxPoints are empty in every lane (zero impulses, rows and block entries).
     // The arrays' zeros past them are stored one by one, in the loops: initialised as `= {}`,
     // each array was a rep stos (17 instructions by callgrind, five a call: 6 % of the kernel).
-    const int points = bundle.maxPoints;
+    const int points = kPoints > 0 ? kPoints : bundle.maxPoints;
     Lane old[4];
     Lane gap[4];  // v_n - target with the current impulses
     for (int i = 0; i < 4; ++i) {
@@ -522,9 +543,7 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
     // Per lane whose normal rows this sweep solves (a manifold with points: hasPoint[0]; none
     // past laneCount): the guessed set, the points that carry load. In the lanes, as masks:
     // lane by lane, these tests were 3 % of a pyramid's step.
-    const LaneMask solved =
-        bundle.hasPoint[0] &
-        (LaneMask{bundle.normals[0], bundle.normals[1], bundle.normals[2], bundle.normals[3]} != 0);
+    const LaneMask solved = bundle.solved;
     const LaneMask several = solved & bundle.hasPoint[1];
     const LaneMask single = solved & ~bundle.hasPoint[1];
     LaneMask active[4];
@@ -590,6 +609,10 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
     // did, but is loaded and stored once: with the impulses' stores between the points (which
     // might have aliased v), every value went through memory at every point, and m^-1 delta was
     // formed again for each of the three axes.
+    // Stored before the velocities' update, which then reads v again after these stores (they
+    // might alias it), where it kept the values read for the gaps, six of them in spill slots.
+    for (int i = 0; i < points; ++i)
+        slots[i].normalImpulse = select(update, next[i], old[i]);
     for (int j = 0; j < 3; ++j) {
         Lane a = v[0][j];
         Lane b = v[1][j];
@@ -607,9 +630,7 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
         v[1][j] = b;
         v[1][3 + j] = angularB;
     }
-    for (int i = 0; i < points; ++i)
-        slots[i].normalImpulse = select(update, next[i], old[i]);
-    scatter(bundle, v);
+    scatterLanes(bundle, v);
     Real largestChange = 0;
     if (settings.tolerance > 0) {
         const Lane* k = block->block;
