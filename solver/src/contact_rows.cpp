@@ -25,8 +25,11 @@ namespace {
     return reinterpret_cast<LaneMask>(a > b);
 }
 
+// Halves folded in the vector before one element is read: element by element, the four
+// extractions and three ors took nine instructions, on every point's friction (pyramid-20).
 [[gnu::always_inline]] inline bool any(LaneMask m) {
-    return (m[0] | m[1] | m[2] | m[3]) != 0;
+    const LaneMask halves = m | __builtin_shufflevector(m, m, 2, 3, 0, 1);
+    return (halves | __builtin_shufflevector(halves, halves, 1, 0, 3, 2))[0] != 0;
 }
 
 [[gnu::always_inline]] inline Lane dot(const Lane (&a)[3], const Lane* b) {
