@@ -334,23 +334,32 @@ template <int kPoints, bool kPlain>
             const LaneMask sticking =
                 positive &
                 reinterpret_cast<LaneMask>(free0 * free0 + free1 * free1 <= limit * limit);
-            const LaneMask rim = positive & ~sticking;
-            Lane solved0{};
-            Lane solved1{};
-            if (any(rim)) {
-                const Lane* k = q.tangentBlock;
-                const Lane b0 = (k[0] * old0 + k[1] * old1) - vt[0];
-                const Lane b1 = (k[2] * old0 + k[3] * old1) - vt[1];
-                solveRimLanes(q, rim, b0, b1, limit, solved0, solved1);
-            }
-            const Lane relaxed0 = old0 + omega * (solved0 - old0);
-            const Lane relaxed1 = old1 + omega * (solved1 - old1);
             const Lane stick0 = -(omega * step0);
             const Lane stick1 = -(omega * step1);
-            delta0 = select(sticking, stick0, relaxed0 - old0);
-            delta1 = select(sticking, stick1, relaxed1 - old1);
-            next0 = select(sticking, old0 + stick0, relaxed0);
-            next1 = select(sticking, old1 + stick1, relaxed1);
+            if (!any(~sticking)) {
+                // Every lane sticks (most points of a resting pyramid): the selects below
+                // would take their sticking side, without the relaxed answers formed.
+                delta0 = stick0;
+                delta1 = stick1;
+                next0 = old0 + stick0;
+                next1 = old1 + stick1;
+            } else {
+                const LaneMask rim = positive & ~sticking;
+                Lane solved0{};
+                Lane solved1{};
+                if (any(rim)) {
+                    const Lane* k = q.tangentBlock;
+                    const Lane b0 = (k[0] * old0 + k[1] * old1) - vt[0];
+                    const Lane b1 = (k[2] * old0 + k[3] * old1) - vt[1];
+                    solveRimLanes(q, rim, b0, b1, limit, solved0, solved1);
+                }
+                const Lane relaxed0 = old0 + omega * (solved0 - old0);
+                const Lane relaxed1 = old1 + omega * (solved1 - old1);
+                delta0 = select(sticking, stick0, relaxed0 - old0);
+                delta1 = select(sticking, stick1, relaxed1 - old1);
+                next0 = select(sticking, old0 + stick0, relaxed0);
+                next1 = select(sticking, old1 + stick1, relaxed1);
+            }
         } else {
             next0 = old0 - omega * (q.tangentMass[0] * vt[0]);
             next1 = old1 - omega * (q.tangentMass[1] * vt[1]);
