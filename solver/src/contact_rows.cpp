@@ -537,19 +537,18 @@ template <int kPoints>
     // each array was a rep stos (17 instructions by callgrind, five a call: 6 % of the kernel).
     const int points = kPoints > 0 ? kPoints : bundle.maxPoints;
     Lane old[4];
-    Lane gap[4];  // v_n - target with the current impulses
-    for (int i = 0; i < 4; ++i) {
-        if (i >= points) {
-            old[i] = Lane{};
-            gap[i] = Lane{};
-            continue;
-        }
+    for (int i = 0; i < 4; ++i)
+        old[i] = i < points ? slots[i].normalImpulse : Lane{};
+    // v_n - target of point i with the current impulses. Only the block's lanes read those of
+    // points past the first, so they are formed in its branch: formed here, GCC sank their
+    // arithmetic into it but left their loads here, 30 lanes through spill slots a bundle.
+    const auto gapAt = [&](int i) {
         const Point& q = slots[i];
-        old[i] = q.normalImpulse;
         const Lane target = (q.targetBase + biasH * q.depth) - q.correction;
         const Lane speed = (normalDv + dot(q.angularB, v[1] + 3)) - dot(q.angularA, v[0] + 3);
-        gap[i] = select(bundle.hasPoint[i], speed - target, Lane{});
-    }
+        return select(bundle.hasPoint[i], speed - target, Lane{});
+    };
+    const Lane gap0 = points > 0 ? gapAt(0) : Lane{};
     // Only a bundle of several points, or one measuring the change, has a block.
     Block* const block = bundle.block == Bundle::kNoBlock ? nullptr : &blocks_[bundle.block];
     // Per lane whose normal rows this sweep solves (a manifold with points: hasPoint[0]; none
@@ -574,10 +573,12 @@ template <int kPoints>
         const Lane* k = block->block;
         Lane c[4];  // the gaps with no normal impulse
         for (int i = 0; i < 4; ++i) {
-            c[i] = i < points ? gap[i] - (((k[4 * i] * old[0] + k[4 * i + 1] * old[1]) +
-                                           k[4 * i + 2] * old[2]) +
-                                          k[4 * i + 3] * old[3])
-                              : Lane{};
+            c[i] =
+                i < points
+                    ? (i == 0 ? gap0 : gapAt(i)) -
+                          (((k[4 * i] * old[0] + k[4 * i + 1] * old[1]) + k[4 * i + 2] * old[2]) +
+                           k[4 * i + 3] * old[3])
+                    : Lane{};
         }
         Lane x[4];
         solveFactoredLanes(block->factor, block->inverseDiagonal, c, active, x);
@@ -598,10 +599,10 @@ template <int kPoints>
         const Lane mass = slots[0].normalMass;
         Lane one;
         if (soft) {
-            const Lane scaled = soft_[bundle.firstPoint].scale * (old[0] - mass * gap[0]);
+            const Lane scaled = soft_[bundle.firstPoint].scale * (old[0] - mass * gap0);
             one = positivePart(old[0] + omega * (scaled - old[0]));
         } else {
-            one = positivePart(old[0] - (omega * mass) * gap[0]);
+            one = positivePart(old[0] - (omega * mass) * gap0);
         }
         next[0] = select(single, one, next[0]);
     }
