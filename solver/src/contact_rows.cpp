@@ -44,6 +44,13 @@ namespace {
     return select(greater(Lane{}, x), -x, x);
 }
 
+// |x| with the sign bit cleared: absolute's value but for the sign of a zero or a NaN, which no
+// comparison sees. For values only compared (one instruction, where absolute takes three).
+[[gnu::always_inline]] inline Lane magnitude(Lane x) {
+    return reinterpret_cast<Lane>(reinterpret_cast<LaneMask>(x) &
+                                  (LaneMask{} + 0x7fffffffffffffff));
+}
+
 // max(0, x) as std::max<Real>(0, x) has it.
 [[gnu::always_inline]] inline Lane positivePart(Lane x) {
     return select(greater(x, Lane{}), x, Lane{});
@@ -75,9 +82,11 @@ namespace {
                                                        const Lane (&c)[4],
                                                        const LaneMask (&active)[4],
                                                        const Lane (&x)[4], LaneMask& ok) {
-    Lane largestC = absolute(c[0]);
+    // The magnitudes are only compared, and the tolerance formed from them (a zero's or a NaN's
+    // sign aside, which gives the same masks: the floor is taken over either zero).
+    Lane largestC = magnitude(c[0]);
     for (int i = 1; i < 4; ++i)
-        largestC = select(greater(absolute(c[i]), largestC), absolute(c[i]), largestC);
+        largestC = select(greater(magnitude(c[i]), largestC), magnitude(c[i]), largestC);
     Lane tolerance = splat(kNormalTolerance) * largestC;
     tolerance = select(greater(splat(kNormalFloor), tolerance), splat(kNormalFloor), tolerance);
     ok = ~LaneMask{};
@@ -85,7 +94,7 @@ namespace {
         const Lane w = (((k[4 * i] * x[0] + k[4 * i + 1] * x[1]) + k[4 * i + 2] * x[2]) +
                         k[4 * i + 3] * x[3]) +
                        c[i];
-        const LaneMask activeOk = ~greater(Lane{}, x[i]) & ~greater(absolute(w), tolerance);
+        const LaneMask activeOk = ~greater(Lane{}, x[i]) & ~greater(magnitude(w), tolerance);
         const LaneMask inactiveOk = ~greater(-tolerance, w) | ~hasPoint[i];
         ok &= (active[i] & activeOk) | (~active[i] & inactiveOk);
     }
@@ -654,6 +663,9 @@ template <int kPoints>
             largestChange = std::max(largestChange, largestLane(absolute(change)));
         }
     }
+    // Most bundles have no such lane: one test, not one a lane.
+    if (!any(alone))
+        return largestChange;
     for (int lane = 0; lane < bundle.laneCount; ++lane) {
         if (alone[lane] != 0) {
             const std::uint32_t index = bundle.constraint[lane];
