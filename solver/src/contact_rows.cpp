@@ -173,6 +173,12 @@ using Pair = double __attribute__((vector_size(16)));
 // (gather and scatter, 123 and 118 instructions a bundle, were 4 % of pyramid-20's). Moves
 // only: the same bits.
 TUMBLE_LANE_KERNEL void ContactRows::gather(const Bundle& bundle, Lane (&v)[2][6]) const {
+    gatherLanes(bundle, v);
+}
+
+// gather's body, inline so that gatherFriction's copies take it in.
+[[gnu::always_inline]] inline void ContactRows::gatherLanes(const Bundle& bundle,
+                                                            Lane (&v)[2][6]) const {
     for (int side = 0; side < 2; ++side) {
         const std::array<std::uint32_t, 4>& body = side == 0 ? bundle.bodyA : bundle.bodyB;
         const Real* lane[4];
@@ -242,6 +248,20 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
     Real largestChange = 0;
     for (Bundle& bundle : bundles_) {
         Lane v[2][6];
+        if (!patches && !soft) {
+            // The default step's sweep: no patches, no lanes held.
+            largestChange = std::max(largestChange, gatherFriction(bundle, settings, v));
+            if (bundle.angular) {
+                scatter(bundle, v);
+                largestChange = std::max(
+                    largestChange, solveAngular(bundle, bodies, constraints, settings.relaxation));
+                gather(bundle, v);
+            }
+            largestChange = std::max(
+                largestChange,
+                solveNormals(bundle, constraints, factors, settings, bias, inverseH, soft, v));
+            continue;
+        }
         gather(bundle, v);
         const unsigned slid =
             patches && bundle.maxPoints > 1 && settings.friction == FrictionModel::Coupled
@@ -289,6 +309,20 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
 // (pyramid-20's solveFriction, 64.3M to 62.8M by callgrind).
 TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle, const SolverSettings& settings,
                                                    Lane (&v)[2][6]) {
+    const bool plain =
+        settings.friction == FrictionModel::Coupled && !(settings.tolerance > 0) && !softTargets_;
+    if (!plain)
+        return solveFrictionLanes<0, false>(bundle, settings, v);
+    if (bundle.maxPoints == 4)
+        return solveFrictionLanes<4, true>(bundle, settings, v);
+    return solveFrictionLanes<0, true>(bundle, settings, v);
+}
+
+// gather, then solveFriction, in one kernel: the velocities go from the unpacks to the first
+// point's rows in registers, one call, not two (the default step's sweep).
+TUMBLE_LANE_KERNEL Real ContactRows::gatherFriction(Bundle& bundle, const SolverSettings& settings,
+                                                    Lane (&v)[2][6]) {
+    gatherLanes(bundle, v);
     const bool plain =
         settings.friction == FrictionModel::Coupled && !(settings.tolerance > 0) && !softTargets_;
     if (!plain)

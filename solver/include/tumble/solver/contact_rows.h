@@ -143,6 +143,8 @@ private:
     void fill(Bundle& bundle, int lane, const ContactConstraint& c, std::uint32_t index, Real slop,
               Real inverseH);
     Real solveFriction(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6]);
+    /// gather, then solveFriction.
+    Real gatherFriction(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6]);
     template <int kPoints, bool kPlain>
     Real solveFrictionLanes(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6]);
     /// The sliding patch (slide_patch.h) of each lane of several points in `only` (bit per
@@ -181,6 +183,7 @@ private:
     Real solveNormalsAlone(Bundle& bundle, int lane, ContactConstraint& c, NormalFactor& factor,
                            const SolverSettings& settings, Real bias, Real inverseH, bool soft);
     void gather(const Bundle& bundle, Lane (&v)[2][6]) const;
+    void gatherLanes(const Bundle& bundle, Lane (&v)[2][6]) const;
     void scatter(const Bundle& bundle, const Lane (&v)[2][6]);
     void scatterLanes(const Bundle& bundle, const Lane (&v)[2][6]);
 
