@@ -157,6 +157,7 @@ void ContactRows::fill(Bundle& bundle, int lane, const ContactConstraint& c, std
     bundle.points[lane] = static_cast<std::uint8_t>(c.pointCount);
     bundle.maxPoints = std::max(bundle.maxPoints, bundle.points[lane]);
     bundle.normals[lane] = c.normalGroup == NormalIslands::kNone;
+    bundle.solved[lane] = bundle.normals[lane] && c.pointCount > 0 ? -1 : 0;
     bundle.grouped = bundle.grouped || !bundle.normals[lane];
     bundle.angular = bundle.angular || c.spinMass > 0 || c.rollingActive;
     setLanes(bundle.normal, lane, c.normal);

@@ -25,8 +25,11 @@ namespace {
     return reinterpret_cast<LaneMask>(a > b);
 }
 
+// Halves folded in the vector before one element is read: element by element, the four
+// extractions and three ors took nine instructions, on every point's friction (pyramid-20).
 [[gnu::always_inline]] inline bool any(LaneMask m) {
-    return (m[0] | m[1] | m[2] | m[3]) != 0;
+    const LaneMask halves = m | __builtin_shufflevector(m, m, 2, 3, 0, 1);
+    return (halves | __builtin_shufflevector(halves, halves, 1, 0, 3, 2))[0] != 0;
 }
 
 [[gnu::always_inline]] inline Lane dot(const Lane (&a)[3], const Lane* b) {
@@ -39,6 +42,13 @@ namespace {
 
 [[gnu::always_inline]] inline Lane absolute(Lane x) {
     return select(greater(Lane{}, x), -x, x);
+}
+
+// |x| with the sign bit cleared: absolute's value but for the sign of a zero or a NaN, which no
+// comparison sees. For values only compared (one instruction, where absolute takes three).
+[[gnu::always_inline]] inline Lane magnitude(Lane x) {
+    return reinterpret_cast<Lane>(reinterpret_cast<LaneMask>(x) &
+                                  (LaneMask{} + 0x7fffffffffffffff));
 }
 
 // max(0, x) as std::max<Real>(0, x) has it.
@@ -72,9 +82,11 @@ namespace {
                                                        const Lane (&c)[4],
                                                        const LaneMask (&active)[4],
                                                        const Lane (&x)[4], LaneMask& ok) {
-    Lane largestC = absolute(c[0]);
+    // The magnitudes are only compared, and the tolerance formed from them (a zero's or a NaN's
+    // sign aside, which gives the same masks: the floor is taken over either zero).
+    Lane largestC = magnitude(c[0]);
     for (int i = 1; i < 4; ++i)
-        largestC = select(greater(absolute(c[i]), largestC), absolute(c[i]), largestC);
+        largestC = select(greater(magnitude(c[i]), largestC), magnitude(c[i]), largestC);
     Lane tolerance = splat(kNormalTolerance) * largestC;
     tolerance = select(greater(splat(kNormalFloor), tolerance), splat(kNormalFloor), tolerance);
     ok = ~LaneMask{};
@@ -82,7 +94,7 @@ namespace {
         const Lane w = (((k[4 * i] * x[0] + k[4 * i + 1] * x[1]) + k[4 * i + 2] * x[2]) +
                         k[4 * i + 3] * x[3]) +
                        c[i];
-        const LaneMask activeOk = ~greater(Lane{}, x[i]) & ~greater(absolute(w), tolerance);
+        const LaneMask activeOk = ~greater(Lane{}, x[i]) & ~greater(magnitude(w), tolerance);
         const LaneMask inactiveOk = ~greater(-tolerance, w) | ~hasPoint[i];
         ok &= (active[i] & activeOk) | (~active[i] & inactiveOk);
     }
@@ -161,6 +173,12 @@ using Pair = double __attribute__((vector_size(16)));
 // (gather and scatter, 123 and 118 instructions a bundle, were 4 % of pyramid-20's). Moves
 // only: the same bits.
 TUMBLE_LANE_KERNEL void ContactRows::gather(const Bundle& bundle, Lane (&v)[2][6]) const {
+    gatherLanes(bundle, v);
+}
+
+// gather's body, inline so that gatherFriction's copies take it in.
+[[gnu::always_inline]] inline void ContactRows::gatherLanes(const Bundle& bundle,
+                                                            Lane (&v)[2][6]) const {
     for (int side = 0; side < 2; ++side) {
         const std::array<std::uint32_t, 4>& body = side == 0 ? bundle.bodyA : bundle.bodyB;
         const Real* lane[4];
@@ -181,6 +199,13 @@ TUMBLE_LANE_KERNEL void ContactRows::gather(const Bundle& bundle, Lane (&v)[2][6
 // velocity back. Lane by lane, A before B, as the element-wise stores were: the same last
 // writer for each value.
 TUMBLE_LANE_KERNEL void ContactRows::scatter(const Bundle& bundle, const Lane (&v)[2][6]) {
+    scatterLanes(bundle, v);
+}
+
+// scatter's body, inline so that solveNormals' copies take it in: called, it was a call from
+// the AVX2 copy to the AVX2 copy with its vzeroupper and four spilled lanes around it.
+[[gnu::always_inline]] inline void ContactRows::scatterLanes(const Bundle& bundle,
+                                                             const Lane (&v)[2][6]) {
     Pair rows[4][2][3];  // lane, side, pair of values
     for (int side = 0; side < 2; ++side) {
         for (int k = 0; k < 6; k += 2) {
@@ -223,6 +248,20 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
     Real largestChange = 0;
     for (Bundle& bundle : bundles_) {
         Lane v[2][6];
+        if (!patches && !soft) {
+            // The default step's sweep: no patches, no lanes held.
+            largestChange = std::max(largestChange, gatherFriction(bundle, settings, v));
+            if (bundle.angular) {
+                scatter(bundle, v);
+                largestChange = std::max(
+                    largestChange, solveAngular(bundle, bodies, constraints, settings.relaxation));
+                gather(bundle, v);
+            }
+            largestChange = std::max(
+                largestChange,
+                solveNormals(bundle, constraints, factors, settings, bias, inverseH, soft, v));
+            continue;
+        }
         gather(bundle, v);
         const unsigned slid =
             patches && bundle.maxPoints > 1 && settings.friction == FrictionModel::Coupled
@@ -263,16 +302,49 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
 
 // The friction of every point, point by point as ContactSolver does, four manifolds at a time.
 // Coupled: the free answer K^-1 (K old - vt) in the lanes, solveDisc for a lane whose answer
-// leaves the disc.
+// leaves the disc. The default step's case (coupled, not measuring, no friction targets) and
+// its four-point bundles (a pyramid's) have their own copies, without the tests of the model
+// and of the tolerance at every point, the loop's counter, and the targets' subtraction (+0
+// outside the soft step, and x - +0 is x, bit for bit): 5 of each point's 191 instructions
+// (pyramid-20's solveFriction, 64.3M to 62.8M by callgrind).
 TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle, const SolverSettings& settings,
                                                    Lane (&v)[2][6]) {
+    const bool plain =
+        settings.friction == FrictionModel::Coupled && !(settings.tolerance > 0) && !softTargets_;
+    if (!plain)
+        return solveFrictionLanes<0, false>(bundle, settings, v);
+    if (bundle.maxPoints == 4)
+        return solveFrictionLanes<4, true>(bundle, settings, v);
+    return solveFrictionLanes<0, true>(bundle, settings, v);
+}
+
+// gather, then solveFriction, in one kernel: the velocities go from the unpacks to the first
+// point's rows in registers, one call, not two (the default step's sweep).
+TUMBLE_LANE_KERNEL Real ContactRows::gatherFriction(Bundle& bundle, const SolverSettings& settings,
+                                                    Lane (&v)[2][6]) {
+    gatherLanes(bundle, v);
+    const bool plain =
+        settings.friction == FrictionModel::Coupled && !(settings.tolerance > 0) && !softTargets_;
+    if (!plain)
+        return solveFrictionLanes<0, false>(bundle, settings, v);
+    if (bundle.maxPoints == 4)
+        return solveFrictionLanes<4, true>(bundle, settings, v);
+    return solveFrictionLanes<0, true>(bundle, settings, v);
+}
+
+// kPoints: the bundle's point slots, or 0 for bundle.maxPoints. kPlain: coupled friction, no
+// measuring, no friction targets (softTargets_ false: every bundle's tangentTarget is +0).
+template <int kPoints, bool kPlain>
+[[gnu::always_inline]] inline Real ContactRows::solveFrictionLanes(Bundle& bundle,
+                                                                   const SolverSettings& settings,
+                                                                   Lane (&v)[2][6]) {
     const Lane omega = splat(settings.relaxation);
-    const bool coupled = settings.friction == FrictionModel::Coupled;
+    const bool coupled = kPlain || settings.friction == FrictionModel::Coupled;
     Point* const slots = points_.data() + bundle.firstPoint;
     // Read once: the impulses' and velocities' stores might alias them, and both were loaded
     // again at every point.
-    const int points = bundle.maxPoints;
-    const bool measure = settings.tolerance > 0;
+    const int points = kPoints > 0 ? kPoints : bundle.maxPoints;
+    const bool measure = !kPlain && settings.tolerance > 0;
     Real largestChange = 0;
     for (int i = 0; i < points; ++i) {
         Point& q = slots[i];
@@ -281,9 +353,10 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle, const SolverS
             dv[k] = v[1][k] - v[0][k];
         Lane vt[2];
         for (int r = 0; r < 2; ++r) {
-            vt[r] = ((dot(bundle.tangents[r], dv) + dot(q.tangentAngularB[r], v[1] + 3)) -
-                     dot(q.tangentAngularA[r], v[0] + 3)) -
-                    bundle.tangentTarget[r];
+            vt[r] = (dot(bundle.tangents[r], dv) + dot(q.tangentAngularB[r], v[1] + 3)) -
+                    dot(q.tangentAngularA[r], v[0] + 3);
+            if constexpr (!kPlain)
+                vt[r] = vt[r] - bundle.tangentTarget[r];
         }
         const Lane old0 = q.tangentImpulse[0];
         const Lane old1 = q.tangentImpulse[1];
@@ -304,23 +377,32 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle, const SolverS
             const LaneMask sticking =
                 positive &
                 reinterpret_cast<LaneMask>(free0 * free0 + free1 * free1 <= limit * limit);
-            const LaneMask rim = positive & ~sticking;
-            Lane solved0{};
-            Lane solved1{};
-            if (any(rim)) {
-                const Lane* k = q.tangentBlock;
-                const Lane b0 = (k[0] * old0 + k[1] * old1) - vt[0];
-                const Lane b1 = (k[2] * old0 + k[3] * old1) - vt[1];
-                solveRimLanes(q, rim, b0, b1, limit, solved0, solved1);
-            }
-            const Lane relaxed0 = old0 + omega * (solved0 - old0);
-            const Lane relaxed1 = old1 + omega * (solved1 - old1);
             const Lane stick0 = -(omega * step0);
             const Lane stick1 = -(omega * step1);
-            delta0 = select(sticking, stick0, relaxed0 - old0);
-            delta1 = select(sticking, stick1, relaxed1 - old1);
-            next0 = select(sticking, old0 + stick0, relaxed0);
-            next1 = select(sticking, old1 + stick1, relaxed1);
+            if (!any(~sticking)) {
+                // Every lane sticks (most points of a resting pyramid): the selects below
+                // would take their sticking side, without the relaxed answers formed.
+                delta0 = stick0;
+                delta1 = stick1;
+                next0 = old0 + stick0;
+                next1 = old1 + stick1;
+            } else {
+                const LaneMask rim = positive & ~sticking;
+                Lane solved0{};
+                Lane solved1{};
+                if (any(rim)) {
+                    const Lane* k = q.tangentBlock;
+                    const Lane b0 = (k[0] * old0 + k[1] * old1) - vt[0];
+                    const Lane b1 = (k[2] * old0 + k[3] * old1) - vt[1];
+                    solveRimLanes(q, rim, b0, b1, limit, solved0, solved1);
+                }
+                const Lane relaxed0 = old0 + omega * (solved0 - old0);
+                const Lane relaxed1 = old1 + omega * (solved1 - old1);
+                delta0 = select(sticking, stick0, relaxed0 - old0);
+                delta1 = select(sticking, stick1, relaxed1 - old1);
+                next0 = select(sticking, old0 + stick0, relaxed0);
+                next1 = select(sticking, old1 + stick1, relaxed1);
+            }
         } else {
             next0 = old0 - omega * (q.tangentMass[0] * vt[0]);
             next1 = old1 - omega * (q.tangentMass[1] * vt[1]);
@@ -331,6 +413,11 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle, const SolverS
             delta0 = next0 - old0;
             delta1 = next1 - old1;
         }
+        // Stored before the velocities' update, which then reads v again after these stores
+        // (they might alias it): stored after, the values read for vt were kept for the update,
+        // in spill slots, six stores more a point (pyramid-20).
+        q.tangentImpulse[0] = next0;
+        q.tangentImpulse[1] = next1;
         for (int k = 0; k < 3; ++k) {
             const Lane linear = delta0 * bundle.tangents[0][k] + delta1 * bundle.tangents[1][k];
             v[0][k] -= bundle.inverseMassA * linear;
@@ -338,8 +425,6 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle, const SolverS
             v[1][k] += bundle.inverseMassB * linear;
             v[1][3 + k] += delta0 * q.tangentImpulseB[0][k] + delta1 * q.tangentImpulseB[1][k];
         }
-        q.tangentImpulse[0] = next0;
-        q.tangentImpulse[1] = next1;
         if (measure) {
             const Lane* k = q.tangentBlock;
             const Lane change0 = k[0] * delta0 + k[1] * delta1;
@@ -462,11 +547,25 @@ Real ContactRows::solveAngularAlone(Bundle& bundle, int lane, std::span<const So
 // one factored -- the first set solveNormalBlock tries, solved with the same factor; the
 // inactive rows of the embedded factor are the identity with a zero right-hand side, so they
 // stay zero. A lane whose set changed, or whose answer fails the set's checks, is solved alone.
+// A pyramid's four-point bundles have their own copy: the loops over the points without their
+// tests of the count (pyramid-20: ~30 of the kernel's ~720 instructions a bundle).
 TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
                                                   std::span<ContactConstraint> constraints,
                                                   std::span<NormalFactor> factors,
                                                   const SolverSettings& settings, Real bias,
                                                   Real inverseH, bool soft, Lane (&v)[2][6]) {
+    if (bundle.maxPoints == 4) {
+        return solveNormalsLanes<4>(bundle, constraints, factors, settings, bias, inverseH, soft,
+                                    v);
+    }
+    return solveNormalsLanes<0>(bundle, constraints, factors, settings, bias, inverseH, soft, v);
+}
+
+// kPoints: the bundle's point slots, or 0 for bundle.maxPoints.
+template <int kPoints>
+[[gnu::always_inline]] inline Real ContactRows::solveNormalsLanes(
+    Bundle& bundle, std::span<ContactConstraint> constraints, std::span<NormalFactor> factors,
+    const SolverSettings& settings, Real bias, Real inverseH, bool soft, Lane (&v)[2][6]) {
     const Lane omega = splat(settings.relaxation);
     const Lane biasH = splat(bias * inverseH);
     Lane dv[3];
@@ -479,29 +578,26 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
     // Slots past maxPoints are empty in every lane (zero impulses, rows and block entries).
     // The arrays' zeros past them are stored one by one, in the loops: initialised as `= {}`,
     // each array was a rep stos (17 instructions by callgrind, five a call: 6 % of the kernel).
-    const int points = bundle.maxPoints;
+    const int points = kPoints > 0 ? kPoints : bundle.maxPoints;
     Lane old[4];
-    Lane gap[4];  // v_n - target with the current impulses
-    for (int i = 0; i < 4; ++i) {
-        if (i >= points) {
-            old[i] = Lane{};
-            gap[i] = Lane{};
-            continue;
-        }
+    for (int i = 0; i < 4; ++i)
+        old[i] = i < points ? slots[i].normalImpulse : Lane{};
+    // v_n - target of point i with the current impulses. Only the block's lanes read those of
+    // points past the first, so they are formed in its branch: formed here, GCC sank their
+    // arithmetic into it but left their loads here, 30 lanes through spill slots a bundle.
+    const auto gapAt = [&](int i) {
         const Point& q = slots[i];
-        old[i] = q.normalImpulse;
         const Lane target = (q.targetBase + biasH * q.depth) - q.correction;
         const Lane speed = (normalDv + dot(q.angularB, v[1] + 3)) - dot(q.angularA, v[0] + 3);
-        gap[i] = select(bundle.hasPoint[i], speed - target, Lane{});
-    }
+        return select(bundle.hasPoint[i], speed - target, Lane{});
+    };
+    const Lane gap0 = points > 0 ? gapAt(0) : Lane{};
     // Only a bundle of several points, or one measuring the change, has a block.
     Block* const block = bundle.block == Bundle::kNoBlock ? nullptr : &blocks_[bundle.block];
     // Per lane whose normal rows this sweep solves (a manifold with points: hasPoint[0]; none
     // past laneCount): the guessed set, the points that carry load. In the lanes, as masks:
     // lane by lane, these tests were 3 % of a pyramid's step.
-    const LaneMask solved =
-        bundle.hasPoint[0] &
-        (LaneMask{bundle.normals[0], bundle.normals[1], bundle.normals[2], bundle.normals[3]} != 0);
+    const LaneMask solved = bundle.solved;
     const LaneMask several = solved & bundle.hasPoint[1];
     const LaneMask single = solved & ~bundle.hasPoint[1];
     LaneMask active[4];
@@ -520,10 +616,12 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
         const Lane* k = block->block;
         Lane c[4];  // the gaps with no normal impulse
         for (int i = 0; i < 4; ++i) {
-            c[i] = i < points ? gap[i] - (((k[4 * i] * old[0] + k[4 * i + 1] * old[1]) +
-                                           k[4 * i + 2] * old[2]) +
-                                          k[4 * i + 3] * old[3])
-                              : Lane{};
+            c[i] =
+                i < points
+                    ? (i == 0 ? gap0 : gapAt(i)) -
+                          (((k[4 * i] * old[0] + k[4 * i + 1] * old[1]) + k[4 * i + 2] * old[2]) +
+                           k[4 * i + 3] * old[3])
+                    : Lane{};
         }
         Lane x[4];
         solveFactoredLanes(block->factor, block->inverseDiagonal, c, active, x);
@@ -544,10 +642,10 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
         const Lane mass = slots[0].normalMass;
         Lane one;
         if (soft) {
-            const Lane scaled = soft_[bundle.firstPoint].scale * (old[0] - mass * gap[0]);
+            const Lane scaled = soft_[bundle.firstPoint].scale * (old[0] - mass * gap0);
             one = positivePart(old[0] + omega * (scaled - old[0]));
         } else {
-            one = positivePart(old[0] - (omega * mass) * gap[0]);
+            one = positivePart(old[0] - (omega * mass) * gap0);
         }
         next[0] = select(single, one, next[0]);
     }
@@ -567,6 +665,10 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
     // did, but is loaded and stored once: with the impulses' stores between the points (which
     // might have aliased v), every value went through memory at every point, and m^-1 delta was
     // formed again for each of the three axes.
+    // Stored before the velocities' update, which then reads v again after these stores (they
+    // might alias it), where it kept the values read for the gaps, six of them in spill slots.
+    for (int i = 0; i < points; ++i)
+        slots[i].normalImpulse = select(update, next[i], old[i]);
     for (int j = 0; j < 3; ++j) {
         Lane a = v[0][j];
         Lane b = v[1][j];
@@ -584,9 +686,7 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
         v[1][j] = b;
         v[1][3 + j] = angularB;
     }
-    for (int i = 0; i < points; ++i)
-        slots[i].normalImpulse = select(update, next[i], old[i]);
-    scatter(bundle, v);
+    scatterLanes(bundle, v);
     Real largestChange = 0;
     if (settings.tolerance > 0) {
         const Lane* k = block->block;
@@ -597,6 +697,9 @@ TUMBLE_LANE_KERNEL Real ContactRows::solveNormals(Bundle& bundle,
             largestChange = std::max(largestChange, largestLane(absolute(change)));
         }
     }
+    // Most bundles have no such lane: one test, not one a lane.
+    if (!any(alone))
+        return largestChange;
     for (int lane = 0; lane < bundle.laneCount; ++lane) {
         if (alone[lane] != 0) {
             const std::uint32_t index = bundle.constraint[lane];

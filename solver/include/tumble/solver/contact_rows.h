@@ -132,6 +132,7 @@ private:
         Lane inverseMassA, inverseMassB, friction;
         Lane tangentTarget[2]{};  // the friction rows' v_t target; 0 but in the soft step
         LaneMask hasPoint[4];     // lanes whose manifold has point i
+        LaneMask solved{};        // lanes with points whose normal rows the sweep solves
         unsigned slidBiased = 0;  // soft step: lanes whose patch slid in the biased sweep
     };
     struct Velocity {
@@ -142,6 +143,10 @@ private:
     void fill(Bundle& bundle, int lane, const ContactConstraint& c, std::uint32_t index, Real slop,
               Real inverseH);
     Real solveFriction(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6]);
+    /// gather, then solveFriction.
+    Real gatherFriction(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6]);
+    template <int kPoints, bool kPlain>
+    Real solveFrictionLanes(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6]);
     /// The sliding patch (slide_patch.h) of each lane of several points in `only` (bit per
     /// lane), lane by lane; `soft` leaves the lanes of exactly solved groups, as the biased
     /// sweep's friction does. Returns the lanes that slid (bit per lane), which the relax sweep
@@ -166,6 +171,10 @@ private:
     Real solveNormals(Bundle& bundle, std::span<ContactConstraint> constraints,
                       std::span<NormalFactor> factors, const SolverSettings& settings, Real bias,
                       Real inverseH, bool soft, Lane (&v)[2][6]);
+    template <int kPoints>
+    Real solveNormalsLanes(Bundle& bundle, std::span<ContactConstraint> constraints,
+                           std::span<NormalFactor> factors, const SolverSettings& settings,
+                           Real bias, Real inverseH, bool soft, Lane (&v)[2][6]);
     /// The torsion and rolling rows of the bundle's lanes that have them, on velocities_.
     Real solveAngular(Bundle& bundle, std::span<const SolverBody> bodies,
                       std::span<ContactConstraint> constraints, Real omega);
@@ -174,7 +183,9 @@ private:
     Real solveNormalsAlone(Bundle& bundle, int lane, ContactConstraint& c, NormalFactor& factor,
                            const SolverSettings& settings, Real bias, Real inverseH, bool soft);
     void gather(const Bundle& bundle, Lane (&v)[2][6]) const;
+    void gatherLanes(const Bundle& bundle, Lane (&v)[2][6]) const;
     void scatter(const Bundle& bundle, const Lane (&v)[2][6]);
+    void scatterLanes(const Bundle& bundle, const Lane (&v)[2][6]);
 
     std::vector<Bundle> bundles_;
     // The bundles' point slots, one after another: a bundle of one-point manifolds takes one
