@@ -38,10 +38,13 @@ using Pair = double __attribute__((vector_size(16)));
 // stores, which might alias): a store-to-load delay per point on the sweep's critical path, a
 // lone column being one chain of manifolds. The values and operations are the same.
 struct SweepBody {
-    Vec3 linearVelocity;
-    Vec3 angularVelocity;
-    Real inverseMass;
+    Vec3 linearVelocity = Vec3::Zero();
+    Vec3 angularVelocity = Vec3::Zero();
+    Real inverseMass = 0;
 
+    /// The static body 0 (SolverBody{}, every field +0: SweepRows::sweepPlain checks its bits):
+    /// constants, so its velocities are not loaded and v - 0 folds to v.
+    SweepBody() = default;
     explicit SweepBody(const SolverBody& body)
         : linearVelocity(body.linearVelocity),
           angularVelocity(body.angularVelocity),
@@ -354,7 +357,7 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
         };
         SolverBody& bodyA = bodies[m.bodyA];
         SolverBody& bodyB = bodies[m.bodyB];
-        SweepBody a(bodyA);
+        SweepBody a = kMovesA ? SweepBody(bodyA) : SweepBody();
         SweepBody b(bodyB);
         SweepPoint* points = points_.data() + m.firstPoint;
         if (refresh) {
