@@ -26,9 +26,15 @@ using Pair = double __attribute__((vector_size(16)));
 
 // The two rows' dot products with v, u . v = (u_x v_x + u_y v_y) + u_z v_z as Eigen forms it for
 // a Vec3, in the two lanes: row by row, each took its own horizontal sum.
+// v's x and y are read as one pair, as Eigen's packets read a Vec3: mixed with scalar reads of
+// the same bytes, they kept GCC from holding the bodies' angular velocities in registers (each
+// manifold stored them to the stack and loaded them back in pieces).
 [[gnu::always_inline]] inline Pair dotPair(const std::array<std::array<Real, 2>, 3>& rows,
                                            const Vec3& v) {
-    return (loadPair(rows[0].data()) * v.x() + loadPair(rows[1].data()) * v.y()) +
+    const Pair xy = loadPair(v.data());
+    const Pair x = {xy[0], xy[0]};
+    const Pair y = {xy[1], xy[1]};
+    return (loadPair(rows[0].data()) * x + loadPair(rows[1].data()) * y) +
            loadPair(rows[2].data()) * v.z();
 }
 
