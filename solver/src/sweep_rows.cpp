@@ -79,20 +79,31 @@ Real solveFriction(SweepBody& a, SweepBody& b, const SweepManifold& m, SweepPoin
     const int count = kPoints > 0 ? kPoints : m.pointCount;
     for (int i = 0; i < count; ++i) {
         SweepPoint& p = points[i];
-        const Vec3 dv = b.linearVelocity - a.linearVelocity;
         // v_t(k) = (t_k . dv + (rB x t_k) . wB - (rA x t_k) . wA) - target_k
-        const Pair slip =
-            ((dotPair(m.tangentAxes, dv) + dotPair(p.tangentAngularB, b.angularVelocity)) -
-             dotPair(p.tangentAngularA, a.angularVelocity)) -
-            target;
-        const Vec2 vt(slip[0], slip[1]);
+        const auto slip = [&] {
+            const Vec3 dv = b.linearVelocity - a.linearVelocity;
+            const Pair s =
+                ((dotPair(m.tangentAxes, dv) + dotPair(p.tangentAngularB, b.angularVelocity)) -
+                 dotPair(p.tangentAngularA, a.angularVelocity)) -
+                target;
+            return Vec2(s[0], s[1]);
+        };
         const Vec2 old(p.tangentImpulse[0], p.tangentImpulse[1]);
         const Real limit = friction * p.normalImpulse;
         Vec2 next;
         Vec2 delta;
         if constexpr (kCoupled) {
-            solveRelaxedDisc(p.tangent, old, vt, limit, omega, next, delta);
+            if (limit > 0) {
+                solveRelaxedDisc(p.tangent, old, slip(), limit, omega, next, delta);
+            } else {
+                // No load (a third of pile-1000's one-point manifolds): solveRelaxedDisc's
+                // answer 0, relaxed, which needs neither the slip nor the block. Tested first,
+                // the slip's rows are not loaded (and spilled) for it.
+                next = Vec2(old(0) + omega * (0 - old(0)), old(1) + omega * (0 - old(1)));
+                delta = Vec2(next(0) - old(0), next(1) - old(1));
+            }
         } else {
+            const Vec2 vt = slip();
             const std::array<Real, 2>& mass = c.points[i].tangentMass;
             next = (old - omega * Vec2(mass[0] * vt(0), mass[1] * vt(1)))
                        .cwiseMax(-limit)
