@@ -71,9 +71,6 @@ template <bool kCoupled, bool kMeasure, int kPoints, bool kMovesA>
 Real solveFriction(SweepBody& a, SweepBody& b, const SweepManifold& m, SweepPoint* points,
                    const ContactConstraint& c, Real omega) {
     Real largestChange = 0;
-    const std::array<Vec3, 2> tangents = m.tangents();
-    const Vec3& t0 = tangents[0];
-    const Vec3& t1 = tangents[1];
     const Pair target = loadPair(m.tangentTarget.data());
     const Real friction = m.friction;
     const int count = kPoints > 0 ? kPoints : m.pointCount;
@@ -110,7 +107,13 @@ Real solveFriction(SweepBody& a, SweepBody& b, const SweepManifold& m, SweepPoin
                        .cwiseMin(limit);
             delta = next - old;
         }
-        const Vec3 linear = delta.x() * t0 + delta.y() * t1;
+        // delta_1 t_1 + delta_2 t_2, coefficient by coefficient as Eigen forms it, read from the
+        // basis by axis: m.tangents()'s two vectors were assembled on the stack for it (six
+        // instructions a manifold on pile-1000).
+        const std::array<std::array<Real, 2>, 3>& axes = m.tangentAxes;
+        const Vec3 linear(delta.x() * axes[0][0] + delta.y() * axes[0][1],
+                          delta.x() * axes[1][0] + delta.y() * axes[1][1],
+                          delta.x() * axes[2][0] + delta.y() * axes[2][1]);
         if constexpr (kMovesA) {
             a.linearVelocity -= a.inverseMass * linear;
             a.angularVelocity -=
