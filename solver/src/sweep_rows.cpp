@@ -359,6 +359,9 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
     targetInputs_ = inputs;
     if (Patches && softScales != nullptr)
         slidBiased_.assign(manifolds_.size(), 0);  // capacity kept from step to step
+    // Held in a local: the points' stores might alias the vector, so its data pointer was loaded
+    // again through `this` for every manifold.
+    SweepPoint* const pointData = points_.data();
     const SweepSettings local{Plain || settings.friction == FrictionModel::Coupled,
                               settings.tolerance > 0, settings.relaxation, settings.slop};
     // One manifold's rows, with its point count a constant when kPoints > 0 (0: m.pointCount):
@@ -379,7 +382,7 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
         SolverBody& bodyB = bodies[m.bodyB];
         SweepBody a = kMovesA ? SweepBody(bodyA) : SweepBody();
         SweepBody b(bodyB);
-        SweepPoint* points = points_.data() + m.firstPoint;
+        SweepPoint* points = pointData + m.firstPoint;
         if (refresh) {
             for (int i = 0; i < pointCount; ++i)
                 points[i].target = normalTarget(points[i], bias, local.slop, inverseH);
