@@ -44,9 +44,12 @@ using Pair = double __attribute__((vector_size(16)));
 // stores, which might alias): a store-to-load delay per point on the sweep's critical path, a
 // lone column being one chain of manifolds. The values and operations are the same.
 struct SweepBody {
+    static constexpr Real kStaticMass = 0;
     Vec3 linearVelocity = Vec3::Zero();
     Vec3 angularVelocity = Vec3::Zero();
-    Real inverseMass = 0;
+    /// The body's own, read where it is used: copied, it was parked on the stack for the
+    /// manifold (a store and a load for each body).
+    const Real& inverseMass = kStaticMass;
 
     /// The static body 0 (SolverBody{}, every field +0: SweepRows::sweepPlain checks its bits):
     /// constants, so its velocities are not loaded and v - 0 folds to v.
@@ -55,6 +58,10 @@ struct SweepBody {
         : linearVelocity(body.linearVelocity),
           angularVelocity(body.angularVelocity),
           inverseMass(body.inverseMass) {}
+    void load(const SolverBody& body) {
+        linearVelocity = body.linearVelocity;
+        angularVelocity = body.angularVelocity;
+    }
     void store(SolverBody& body) const {
         body.linearVelocity = linearVelocity;
         body.angularVelocity = angularVelocity;
@@ -202,8 +209,8 @@ Real angularRows(SweepBody& a, SweepBody& b, SolverBody& bodyA, SolverBody& body
     a.store(bodyA);
     b.store(bodyB);
     const Real change = solveAngularFriction(bodyA, bodyB, c, omega);
-    a = SweepBody(bodyA);
-    b = SweepBody(bodyB);
+    a.load(bodyA);
+    b.load(bodyB);
     return change;
 }
 
