@@ -26,9 +26,15 @@ using Pair = double __attribute__((vector_size(16)));
 
 // The two rows' dot products with v, u . v = (u_x v_x + u_y v_y) + u_z v_z as Eigen forms it for
 // a Vec3, in the two lanes: row by row, each took its own horizontal sum.
+// v's x and y are read as one pair, as Eigen's packets read a Vec3: mixed with scalar reads of
+// the same bytes, they kept GCC from holding the bodies' angular velocities in registers (each
+// manifold stored them to the stack and loaded them back in pieces).
 [[gnu::always_inline]] inline Pair dotPair(const std::array<std::array<Real, 2>, 3>& rows,
                                            const Vec3& v) {
-    return (loadPair(rows[0].data()) * v.x() + loadPair(rows[1].data()) * v.y()) +
+    const Pair xy = loadPair(v.data());
+    const Pair x = {xy[0], xy[0]};
+    const Pair y = {xy[1], xy[1]};
+    return (loadPair(rows[0].data()) * x + loadPair(rows[1].data()) * y) +
            loadPair(rows[2].data()) * v.z();
 }
 
@@ -38,14 +44,24 @@ using Pair = double __attribute__((vector_size(16)));
 // stores, which might alias): a store-to-load delay per point on the sweep's critical path, a
 // lone column being one chain of manifolds. The values and operations are the same.
 struct SweepBody {
-    Vec3 linearVelocity;
-    Vec3 angularVelocity;
-    Real inverseMass;
+    static constexpr Real kStaticMass = 0;
+    Vec3 linearVelocity = Vec3::Zero();
+    Vec3 angularVelocity = Vec3::Zero();
+    /// The body's own, read where it is used: copied, it was parked on the stack for the
+    /// manifold (a store and a load for each body).
+    const Real& inverseMass = kStaticMass;
 
+    /// The static body 0 (SolverBody{}, every field +0: SweepRows::sweepPlain checks its bits):
+    /// constants, so its velocities are not loaded and v - 0 folds to v.
+    SweepBody() = default;
     explicit SweepBody(const SolverBody& body)
         : linearVelocity(body.linearVelocity),
           angularVelocity(body.angularVelocity),
           inverseMass(body.inverseMass) {}
+    void load(const SolverBody& body) {
+        linearVelocity = body.linearVelocity;
+        angularVelocity = body.angularVelocity;
+    }
     void store(SolverBody& body) const {
         body.linearVelocity = linearVelocity;
         body.angularVelocity = angularVelocity;
@@ -62,35 +78,49 @@ template <bool kCoupled, bool kMeasure, int kPoints, bool kMovesA>
 Real solveFriction(SweepBody& a, SweepBody& b, const SweepManifold& m, SweepPoint* points,
                    const ContactConstraint& c, Real omega) {
     Real largestChange = 0;
-    const std::array<Vec3, 2> tangents = m.tangents();
-    const Vec3& t0 = tangents[0];
-    const Vec3& t1 = tangents[1];
     const Pair target = loadPair(m.tangentTarget.data());
     const Real friction = m.friction;
     const int count = kPoints > 0 ? kPoints : m.pointCount;
     for (int i = 0; i < count; ++i) {
         SweepPoint& p = points[i];
-        const Vec3 dv = b.linearVelocity - a.linearVelocity;
         // v_t(k) = (t_k . dv + (rB x t_k) . wB - (rA x t_k) . wA) - target_k
-        const Pair slip =
-            ((dotPair(m.tangentAxes, dv) + dotPair(p.tangentAngularB, b.angularVelocity)) -
-             dotPair(p.tangentAngularA, a.angularVelocity)) -
-            target;
-        const Vec2 vt(slip[0], slip[1]);
+        const auto slip = [&] {
+            const Vec3 dv = b.linearVelocity - a.linearVelocity;
+            const Pair s =
+                ((dotPair(m.tangentAxes, dv) + dotPair(p.tangentAngularB, b.angularVelocity)) -
+                 dotPair(p.tangentAngularA, a.angularVelocity)) -
+                target;
+            return Vec2(s[0], s[1]);
+        };
         const Vec2 old(p.tangentImpulse[0], p.tangentImpulse[1]);
         const Real limit = friction * p.normalImpulse;
         Vec2 next;
         Vec2 delta;
         if constexpr (kCoupled) {
-            solveRelaxedDisc(p.tangent, old, vt, limit, omega, next, delta);
+            if (limit > 0) {
+                solveRelaxedDisc(p.tangent, old, slip(), limit, omega, next, delta);
+            } else {
+                // No load (a third of pile-1000's one-point manifolds): solveRelaxedDisc's
+                // answer 0, relaxed, which needs neither the slip nor the block. Tested first,
+                // the slip's rows are not loaded (and spilled) for it.
+                next = Vec2(old(0) + omega * (0 - old(0)), old(1) + omega * (0 - old(1)));
+                delta = Vec2(next(0) - old(0), next(1) - old(1));
+            }
         } else {
+            const Vec2 vt = slip();
             const std::array<Real, 2>& mass = c.points[i].tangentMass;
             next = (old - omega * Vec2(mass[0] * vt(0), mass[1] * vt(1)))
                        .cwiseMax(-limit)
                        .cwiseMin(limit);
             delta = next - old;
         }
-        const Vec3 linear = delta.x() * t0 + delta.y() * t1;
+        // delta_1 t_1 + delta_2 t_2, coefficient by coefficient as Eigen forms it, read from the
+        // basis by axis: m.tangents()'s two vectors were assembled on the stack for it (six
+        // instructions a manifold on pile-1000).
+        const std::array<std::array<Real, 2>, 3>& axes = m.tangentAxes;
+        const Vec3 linear(delta.x() * axes[0][0] + delta.y() * axes[0][1],
+                          delta.x() * axes[1][0] + delta.y() * axes[1][1],
+                          delta.x() * axes[2][0] + delta.y() * axes[2][1]);
         if constexpr (kMovesA) {
             a.linearVelocity -= a.inverseMass * linear;
             a.angularVelocity -=
@@ -179,8 +209,8 @@ Real angularRows(SweepBody& a, SweepBody& b, SolverBody& bodyA, SolverBody& body
     a.store(bodyA);
     b.store(bodyB);
     const Real change = solveAngularFriction(bodyA, bodyB, c, omega);
-    a = SweepBody(bodyA);
-    b = SweepBody(bodyB);
+    a.load(bodyA);
+    b.load(bodyB);
     return change;
 }
 
@@ -336,6 +366,9 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
     targetInputs_ = inputs;
     if (Patches && softScales != nullptr)
         slidBiased_.assign(manifolds_.size(), 0);  // capacity kept from step to step
+    // Held in a local: the points' stores might alias the vector, so its data pointer was loaded
+    // again through `this` for every manifold.
+    SweepPoint* const pointData = points_.data();
     const SweepSettings local{Plain || settings.friction == FrictionModel::Coupled,
                               settings.tolerance > 0, settings.relaxation, settings.slop};
     // One manifold's rows, with its point count a constant when kPoints > 0 (0: m.pointCount):
@@ -354,9 +387,9 @@ Real SweepRows::sweepWith(std::span<SolverBody> bodies, std::span<ContactConstra
         };
         SolverBody& bodyA = bodies[m.bodyA];
         SolverBody& bodyB = bodies[m.bodyB];
-        SweepBody a(bodyA);
+        SweepBody a = kMovesA ? SweepBody(bodyA) : SweepBody();
         SweepBody b(bodyB);
-        SweepPoint* points = points_.data() + m.firstPoint;
+        SweepPoint* points = pointData + m.firstPoint;
         if (refresh) {
             for (int i = 0; i < pointCount; ++i)
                 points[i].target = normalTarget(points[i], bias, local.slop, inverseH);
