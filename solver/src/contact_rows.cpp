@@ -309,20 +309,22 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
 // (pyramid-20's solveFriction, 64.3M to 62.8M by callgrind).
 TUMBLE_LANE_KERNEL Real ContactRows::solveFriction(Bundle& bundle, const SolverSettings& settings,
                                                    Lane (&v)[2][6]) {
-    const bool plain =
-        settings.friction == FrictionModel::Coupled && !(settings.tolerance > 0) && !softTargets_;
-    if (!plain)
-        return solveFrictionLanes<0, false>(bundle, settings, v);
-    if (bundle.maxPoints == 4)
-        return solveFrictionLanes<4, true>(bundle, settings, v);
-    return solveFrictionLanes<0, true>(bundle, settings, v);
+    return frictionWith<false>(bundle, settings, v);
 }
 
 // gather, then solveFriction, in one kernel: the velocities go from the unpacks to the first
 // point's rows in registers, one call, not two (the default step's sweep).
 TUMBLE_LANE_KERNEL Real ContactRows::gatherFriction(Bundle& bundle, const SolverSettings& settings,
                                                     Lane (&v)[2][6]) {
-    gatherLanes(bundle, v);
+    return frictionWith<true>(bundle, settings, v);
+}
+
+template <bool kGather>
+[[gnu::always_inline]] inline Real ContactRows::frictionWith(Bundle& bundle,
+                                                             const SolverSettings& settings,
+                                                             Lane (&v)[2][6]) {
+    if constexpr (kGather)
+        gatherLanes(bundle, v);
     const bool plain =
         settings.friction == FrictionModel::Coupled && !(settings.tolerance > 0) && !softTargets_;
     if (!plain)

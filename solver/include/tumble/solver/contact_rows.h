@@ -145,6 +145,9 @@ private:
     Real solveFriction(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6]);
     /// gather, then solveFriction.
     Real gatherFriction(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6]);
+    /// Both kernels' body: the gather when kGather, then the friction's copy for the settings.
+    template <bool kGather>
+    Real frictionWith(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6]);
     template <int kPoints, bool kPlain>
     Real solveFrictionLanes(Bundle& bundle, const SolverSettings& settings, Lane (&v)[2][6]);
     /// The sliding patch (slide_patch.h) of each lane of several points in `only` (bit per
