@@ -101,38 +101,30 @@ Real ContactRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstrain
         }
     }
     Real largestChange = 0;
+    const bool relax = patches && !soft;  // the soft step's relax sweep
     for (Bundle& bundle : bundles_) {
         Lane v[2][6];
+        unsigned slid = 0;
         if (!patches && !soft) {
             // The default step's sweep: no patches, no lanes held.
             largestChange = std::max(largestChange, gatherFriction(bundle, settings, v));
-            if (bundle.angular) {
-                scatter(bundle, v);
-                largestChange = std::max(
-                    largestChange, solveAngular(bundle, bodies, constraints, settings.relaxation));
-                gather(bundle, v);
-            }
-            largestChange = std::max(
-                largestChange,
-                solveNormals(bundle, constraints, factors, settings, bias, inverseH, soft, v));
-            continue;
+        } else {
+            gather(bundle, v);
+            slid = patches && bundle.maxPoints > 1 && settings.friction == FrictionModel::Coupled
+                       ? slidePatches(bundle, bodies, settings, soft, ~0u, v)
+                       : 0u;
+            // The biased sweep leaves the points' rows of exactly solved groups to the relax
+            // sweep (ContactSolver::softSweep), and those of a face whose patch slid
+            // (slide_patch.cpp).
+            if (patches && soft)
+                bundle.slidBiased = slid;
+            unsigned held = soft ? slid : 0u;
+            for (int lane = 0; soft && bundle.grouped && lane < bundle.laneCount; ++lane)
+                held |= bundle.normals[lane] ? 0u : 1u << lane;
+            largestChange =
+                std::max(largestChange, held != 0 ? solveFrictionHolding(bundle, settings, v, held)
+                                                  : solveFriction(bundle, settings, v));
         }
-        gather(bundle, v);
-        const unsigned slid =
-            patches && bundle.maxPoints > 1 && settings.friction == FrictionModel::Coupled
-                ? slidePatches(bundle, bodies, settings, soft, ~0u, v)
-                : 0u;
-        // The biased sweep leaves the points' rows of exactly solved groups to the relax sweep
-        // (ContactSolver::softSweep), and those of a face whose patch slid (slide_patch.cpp).
-        if (patches && soft)
-            bundle.slidBiased = slid;
-        const bool relax = patches && !soft;  // the soft step's relax sweep
-        unsigned held = soft ? slid : 0u;
-        for (int lane = 0; soft && bundle.grouped && lane < bundle.laneCount; ++lane)
-            held |= bundle.normals[lane] ? 0u : 1u << lane;
-        largestChange =
-            std::max(largestChange, held != 0 ? solveFrictionHolding(bundle, settings, v, held)
-                                              : solveFriction(bundle, settings, v));
         if (bundle.angular && !relax) {
             scatter(bundle, v);
             largestChange = std::max(
