@@ -161,8 +161,9 @@ void Islands::updateSleep(BodyStore& bodies, ContactManager& contacts, const Spr
         const Contact& contact = contacts.contact(slot);
         if (!contacts.isActive(slot) || !isTouching(contact))
             continue;
-        const std::uint32_t a = bodies.indexOf(contact.bodyA);
-        const std::uint32_t b = bodies.indexOf(contact.bodyB);
+        // Live while the contact is (shapePose says why): unchecked, as buildConstraints'.
+        const std::uint32_t a = bodies.checkedIndexOf(contact.bodyA);
+        const std::uint32_t b = bodies.checkedIndexOf(contact.bodyB);
         const bool dynamicA = bodies.isAwakeDynamic(a);
         const bool dynamicB = bodies.isAwakeDynamic(b);
         if (dynamicA)

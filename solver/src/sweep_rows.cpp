@@ -239,6 +239,25 @@ Real angularRows(SweepBody& a, SweepBody& b, SolverBody& bodyA, SolverBody& body
                                a.inverseMass + b.inverseMass, m.friction);
 }
 
+// The plain sweep skips body 0's updates, which is exact only while body 0 is the static
+// SolverBody{} (every +0: the engine's solver body 0, joints.cpp). A caller whose body 0 moves
+// gets the general sweep: the same operations, so the same bits, at its cost.
+bool staticBodyZero(std::span<const SolverBody> bodies) {
+    if (bodies.empty())
+        return false;
+    const SolverBody& s = bodies[0];
+    const auto zero = [](Real x) { return std::bit_cast<std::uint64_t>(x) == 0; };
+    if (!zero(s.inverseMass))
+        return false;
+    for (int i = 0; i < 3; ++i)
+        if (!zero(s.linearVelocity[i]) || !zero(s.angularVelocity[i]))
+            return false;
+    for (int i = 0; i < 9; ++i)
+        if (!zero(s.inverseInertia.data()[i]))
+            return false;
+    return true;
+}
+
 }  // namespace
 
 void SweepRows::clear() {
@@ -297,27 +316,6 @@ void SweepRows::add(const ContactConstraint& c, std::uint32_t index,
         p.bounces = q.bounces;
     }
 }
-
-namespace {
-// The plain sweep skips body 0's updates, which is exact only while body 0 is the static
-// SolverBody{} (every +0: the engine's solver body 0, joints.cpp). A caller whose body 0 moves
-// gets the general sweep: the same operations, so the same bits, at its cost.
-bool staticBodyZero(std::span<const SolverBody> bodies) {
-    if (bodies.empty())
-        return false;
-    const SolverBody& s = bodies[0];
-    const auto zero = [](Real x) { return std::bit_cast<std::uint64_t>(x) == 0; };
-    if (!zero(s.inverseMass))
-        return false;
-    for (int i = 0; i < 3; ++i)
-        if (!zero(s.linearVelocity[i]) || !zero(s.angularVelocity[i]))
-            return false;
-    for (int i = 0; i < 9; ++i)
-        if (!zero(s.inverseInertia.data()[i]))
-            return false;
-    return true;
-}
-}  // namespace
 
 Real SweepRows::sweep(std::span<SolverBody> bodies, std::span<ContactConstraint> constraints,
                       std::span<NormalFactor> factors, const SolverSettings& settings,
