@@ -206,15 +206,22 @@ TEST(ThreadRestThinWall, LandsWithoutKicks) {
 
 TEST_P(ThreadRest, ADrapedNetComesToRest) {
     // Tolerance, written before measuring: after 2 s the median node speed is below 1 mm/s (no
-    // sleeping: the net must settle by itself).
+    // sleeping: the net must settle by itself). Held at every step of the second after, not
+    // only at 2 s: on the box edge the net slides in stick-slip jerks until ~1.9 s (median
+    // 4.7 mm/s at 1.917 s), so one sample could pass or fail by a jerk's phase; from 2 s to
+    // 3 s the worst step is 8.5e-7 (box edge), 1.7e-5 (cylinder), 1.3e-5 (bin), 6e-26 (ground).
     WorldDef def;
     def.timeStep = 1.0 / 120;
     def.enableSleep = false;
     World world(def);
     const Lumped net = build(world, GetParam(), 8);
-    for (int step = 0; step < 240; ++step)
+    Real worst = 0;
+    for (int step = 1; step <= 360; ++step) {
         ASSERT_TRUE(world.step().ok());
-    EXPECT_LT(medianSpeed(world, net), 1e-3);
+        if (step >= 240)
+            worst = std::max(worst, medianSpeed(world, net));
+    }
+    EXPECT_LT(worst, 1e-3);
     if (GetParam() == Support::OpenBin) {
         // Held across the opening by the threads on the rim: the middle node no lower than the
         // net's own mesh size below the rim, not on the ground inside.
