@@ -259,8 +259,8 @@ class EPC:
     2.9, 0.11 at mu -> inf, against the block-diagonal shift's 0.07, 0.18, 0.87).
     kat: where K is frozen, 'x0' (step start) or 'mid' (the predictor at h/2)."""
 
-    def __init__(self, net, h, mode="full", gamma=None, ell=0.27, kat="x0"):
-        self.net, self.h, self.mode = net, h, mode
+    def __init__(self, net, h, mode="full", gamma=None, ell=0.27, kat="x0", linesearch=False):
+        self.net, self.h, self.mode, self.linesearch = net, h, mode, linesearch
         self.ell, self.kat = ell, kat
         lam = np.linalg.eigvals(A2)
         self.gamma = gamma if gamma is not None else (
@@ -343,6 +343,19 @@ class EPC:
                 dx, info = spla.gmres(J, rhs, M=Mop, tol=1e-10, atol=1e-16, restart=30, maxiter=5,
                                       callback=cb, callback_type="pr_norm")
                 stat("epc_bsolve3", 2 * (cnt[0] + 1))
+            if self.linesearch:
+                # backtracking on |R| (halving, up to 12 cuts): the kinks make plain Newton cycle
+                r0 = np.linalg.norm(rhs)
+                t = 1.0
+                for _ in range(12):
+                    Xt = [X[0] + t * dx[:n3].reshape(-1, 3), X[1] + t * dx[n3:].reshape(-1, 3)]
+                    Ft, _ = self.quad(x0, Xt, False)
+                    Rt = self.residual(x0, v0, Xt, Ft)
+                    if np.linalg.norm(np.concatenate([Rt[0].ravel(), Rt[1].ravel()])) < (1 - 1e-4 * t) * r0:
+                        break
+                    t *= 0.5
+                    stat("epc_cuts")
+                dx = t * dx
             X = [X[0] + dx[:n3].reshape(-1, 3), X[1] + dx[n3:].reshape(-1, 3)]
             stat("epc_newton")
             if np.abs(dx).max() < TOL:
