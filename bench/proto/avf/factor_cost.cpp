@@ -27,7 +27,8 @@ double best(F f, int reps = 7) {
     for (int r = 0; r < reps; ++r) {
         auto s = std::chrono::steady_clock::now();
         f();
-        b = std::min(b, std::chrono::duration<double>(std::chrono::steady_clock::now() - s).count());
+        b = std::min(b,
+                     std::chrono::duration<double>(std::chrono::steady_clock::now() - s).count());
     }
     return b;
 }
@@ -45,8 +46,10 @@ int main(int argc, char** argv) {
     std::vector<std::pair<int, int>> th;
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) {
-            if (j + 1 < n) th.push_back({i * n + j, i * n + j + 1});
-            if (i + 1 < n) th.push_back({i * n + j, (i + 1) * n + j});
+            if (j + 1 < n)
+                th.push_back({i * n + j, i * n + j + 1});
+            if (i + 1 < n)
+                th.push_back({i * n + j, (i + 1) * n + j});
         }
     const int E = static_cast<int>(th.size());
     // Lambda of A^2 (2-stage Gauss): 1/24 +- i sqrt(3)/24; A^-2 entries.
@@ -75,7 +78,8 @@ int main(int argc, char** argv) {
     }
     SpD K(3 * N, 3 * N), M(3 * N, 3 * N);
     K.setFromTriplets(kt.begin(), kt.end());
-    for (int i = 0; i < 3 * N; ++i) mt.emplace_back(i, i, m);
+    for (int i = 0; i < 3 * N; ++i)
+        mt.emplace_back(i, i, m);
     M.setFromTriplets(mt.begin(), mt.end());
     // Dual S = J M^-1 J'.
     std::vector<T> jt;
@@ -94,16 +98,21 @@ int main(int argc, char** argv) {
         std::vector<T> t;
         auto put = [&](const SpD& s, int ro, int co) {
             for (int c = 0; c < s.outerSize(); ++c)
-                for (SpD::InnerIterator it(s, c); it; ++it) t.emplace_back(it.row() + ro, it.col() + co, it.value());
+                for (SpD::InnerIterator it(s, c); it; ++it)
+                    t.emplace_back(it.row() + ro, it.col() + co, it.value());
         };
-        put(a00, 0, 0); put(a01, 0, n0); put(a10, n0, 0); put(a11, n0, n0);
+        put(a00, 0, 0);
+        put(a01, 0, n0);
+        put(a10, n0, 0);
+        put(a11, n0, n0);
         SpD out(2 * n0, 2 * n0);
         out.setFromTriplets(t.begin(), t.end());
         return out;
     };
     const SpD dualMid = S + IE * (1 / (h * h * k * 0.25));
     const SpD dual2 = stack2(S + Ai(0, 0) * IE, Ai(0, 1) * IE, Ai(1, 0) * IE, S + Ai(1, 1) * IE);
-    SpC dualC = S.cast<std::complex<double>>() + IE.cast<std::complex<double>>() * (1.0 / (h * h * k * lam));
+    SpC dualC = S.cast<std::complex<double>>() +
+                IE.cast<std::complex<double>>() * (1.0 / (h * h * k * lam));
     const SpD primMid = M + (0.25 * h * h) * K;
     const SpD prim2 = stack2(M + h * h * A2(0, 0) * K, h * h * A2(0, 1) * K, h * h * A2(1, 0) * K,
                              M + h * h * A2(1, 1) * K);
@@ -112,7 +121,8 @@ int main(int argc, char** argv) {
     Eigen::SimplicialLDLT<SpD, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt;
     Eigen::SparseLU<SpD, Eigen::COLAMDOrdering<int>> lu;
     Eigen::SparseLU<SpC, Eigen::COLAMDOrdering<int>> luc;
-    std::printf("net %d x %d: N %d, threads %d (Eigen, numeric factor, best of 7, ms)\n", n, n, N, E);
+    std::printf("net %d x %d: N %d, threads %d (Eigen, numeric factor, best of 7, ms)\n", n, n, N,
+                E);
     auto report = [](const char* what, double t, double base) {
         std::printf("  %-44s %9.3f ms  x%.2f\n", what, 1e3 * t, t / base);
     };
