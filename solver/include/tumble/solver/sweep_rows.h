@@ -14,6 +14,7 @@
 #include <span>
 #include <vector>
 
+#include "tumble/core/lane_kernel.h"
 #include "tumble/core/solver_types.h"
 #include "tumble/solver/disc_block.h"
 #include "tumble/solver/solver_body.h"
@@ -110,10 +111,10 @@ private:
     /// sweep() with `patches`, and whether it is the default step's plain sweep (no soft scales,
     /// not measuring, coupled friction), fixed at compile time (sweep_rows.cpp says why).
     template <bool Patches, bool Plain>
-    [[gnu::flatten]] Real sweepWith(std::span<SolverBody> bodies,
-                                    std::span<ContactConstraint> constraints,
-                                    std::span<NormalFactor> factors, const SolverSettings& given,
-                                    Real inverseH, Real bias, const Real* softScalesGiven);
+    TUMBLE_FLATTEN Real sweepWith(std::span<SolverBody> bodies,
+                                  std::span<ContactConstraint> constraints,
+                                  std::span<NormalFactor> factors, const SolverSettings& given,
+                                  Real inverseH, Real bias, const Real* softScalesGiven);
 
     /// sweepWith<false, true>, the default step's sweep, as a lane kernel (lane_kernel.h): its
     /// AVX2 copy's three-operand instructions save the baseline's register copies.
