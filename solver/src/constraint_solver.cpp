@@ -37,6 +37,13 @@ SolverStats ConstraintSolver::solve(std::span<SolverBody> bodies,
     profile_.relax =
         timed([&] { relax(bodies, constraints, springs, pseudo, settings, inverseH); });
     contacts_.finish(constraints);
+    // The sprung contacts converged with the springs, the step still ending on the springs
+    // (sprung_contacts.cpp): runSweeps' last spring solve pushed net nodes back into their
+    // contacts, and the push-out that took them out again stretched the threads at rest.
+    if (split && directSprings_ && springBlock_.ready()) {
+        profile_.relax +=
+            timed([&] { settleSprungContacts(bodies, constraints, springs, settings, inverseH); });
+    }
     profile_.residual = timed([&] {
         stats.maxResidual =
             contacts_.residual(bodies, constraints, settings, inverseH, velocityBias);

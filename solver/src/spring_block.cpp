@@ -350,6 +350,47 @@ Real SpringBlockSolver::apply(std::span<SolverBody> bodies, bool clamp) {
     return largestChange;
 }
 
+void SpringBlockSolver::respond(std::span<SolverBody> change) {
+    if (!factored_)
+        return;
+    const int n = static_cast<int>(rowCount());
+    auto load = [&] {
+        for (int i = 0; i < n; ++i) {
+            const SpringRow& r = row(i);
+            work_[position_[i]] =
+                active_[i] ? 0 - springRowSpeed(change[r.bodyA], change[r.bodyB], r) : 0;
+        }
+    };
+    load();
+    // computeUpdate()'s solves.
+    if (!compacted_ || !solveCompact()) {
+        load();
+        for (int j = 0; j < n; ++j) {
+            if (!active_[rowAt_[j]])
+                continue;
+            const Real y = work_[j];
+            for (int p = lStart_[j]; p < lStart_[j + 1]; ++p)
+                work_[lIndex_[p]] -= lValue_[p] * y;
+        }
+        for (int j = 0; j < n; ++j)
+            work_[j] /= diagonal_[j];
+        for (int j = n - 1; j >= 0; --j) {
+            if (!active_[rowAt_[j]])
+                continue;
+            Real x = work_[j];
+            for (int p = lStart_[j]; p < lStart_[j + 1]; ++p)
+                x -= lValue_[p] * work_[lIndex_[p]];
+            work_[j] = x;
+        }
+    }
+    for (int i = 0; i < n; ++i) {
+        if (!active_[i])
+            continue;
+        const SpringRow& r = row(i);
+        applySpringImpulse(change[r.bodyA], change[r.bodyB], r, work_[position_[i]]);
+    }
+}
+
 Real SpringBlockSolver::relaxSlackRows(std::span<SolverBody> bodies) {
     Real largestChange = 0;
     for (std::size_t i = 0; i < rowCount(); ++i) {
@@ -388,6 +429,16 @@ Real SpringBlockSolver::solve(std::span<SolverBody> bodies, std::span<SpringRow>
         if (factored_ && refreshTransverseRows(bodies) && factored_)
             change = settle(bodies);
     }
+    storeTurnImpulses();
+    return change;
+}
+
+Real SpringBlockSolver::solveActive(std::span<SolverBody> bodies, std::span<SpringRow> rows) {
+    if (!factored_ || !settled_)
+        return solve(bodies, rows);
+    elements_ = rows;
+    computeUpdate(bodies);
+    const Real change = apply(bodies, false);
     storeTurnImpulses();
     return change;
 }

@@ -16,6 +16,7 @@
 /// joint_row.h. Deterministic: every row kind is solved in array order, in the same order in
 /// every sweep.
 
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -72,6 +73,14 @@ private:
                           std::vector<PseudoVelocity>& pseudo, Real inverseH,
                           const SolverSettings& settings);
 
+    /// After the relax sweeps (split impulse): the normal rows of the contacts without pushOut
+    /// (net nodes' and other sprung bodies') solved exactly against the spring block, then the
+    /// springs once more (sprung_contacts.cpp).
+    void settleSprungContacts(std::span<SolverBody> bodies,
+                              std::span<ContactConstraint> constraints,
+                              std::span<SpringRow> springs, const SolverSettings& settings,
+                              Real inverseH);
+
     ContactSolver contacts_;
     SolverProfile profile_;
     SpringBlockSolver springBlock_;
@@ -88,6 +97,22 @@ private:
     bool directJoints_ = false;             ///< this step's ball joints go through jointBlock_
     std::vector<SolverBody> pseudoBodies_;  ///< the joints' position pass works on these
     SprungPushOut sprungPushOut_;           ///< the contacts without pushOut, this step
+    // settleSprungContacts' scratch.
+    struct SprungPoint {
+        std::uint32_t index = 0;  ///< of the constraint, or of the segment row
+        int point = 0;            ///< in the constraint
+        bool segment = false;
+    };
+    Real sprungSpeed(std::span<const SolverBody> bodies,
+                     std::span<const ContactConstraint> constraints,
+                     const SprungPoint& point) const;
+    void applySprung(std::span<SolverBody> bodies, std::span<const ContactConstraint> constraints,
+                     const SprungPoint& point, Real lambda) const;
+    std::vector<SprungPoint> sprungPoints_;
+    std::vector<Real> sprungMatrix_;    ///< W, column-major: v_n of point k per unit impulse at j
+    std::vector<Real> sprungGap_;       ///< v_n - target of each point (m/s)
+    std::vector<Real> sprungDelta_;     ///< the impulse added at each point (N s)
+    std::vector<SolverBody> response_;  ///< velocity changes of one unit impulse
 };
 
 }  // namespace tumble

@@ -65,6 +65,17 @@ public:
     /// Returns the largest change of a row's J v (m/s), for the solver's tolerance.
     Real solve(std::span<SolverBody> bodies, std::span<SpringRow> rows);
 
+    /// The change the next solve() would make to `change` -- velocity changes, e.g. of a unit
+    /// contact impulse, on a copy of the bodies -- with the active set kept: the rows' impulses
+    /// answering J change, added to `change`; the rows' own impulses untouched. Linear (the
+    /// slack rows' Gauss-Seidel left out), so the held node contacts can be solved against the
+    /// springs (SprungContacts). Only after a solve() of this step.
+    void respond(std::span<SolverBody> change);
+
+    /// solve() without the slack rows' Gauss-Seidel, after a solve() of this step: exactly what
+    /// respond() predicts.
+    Real solveActive(std::span<SolverBody> bodies, std::span<SpringRow> rows);
+
     /// Transverse rows added by the last prepare(), for the benchmarks.
     std::size_t transverseRows() const { return transverse_.size(); }
 
