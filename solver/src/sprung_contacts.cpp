@@ -37,8 +37,8 @@ namespace {
 // The sprung rows' complementarity residual (m/s) above which they are settled. A step ending
 // with a node approaching its contact at v moves it h v in, which the next push-out takes back
 // against the threads: at 1 mm/s (the rest tests' speed) the pile under a net gains 0.011 % of
-// its threads' energy over 6 s (anchors on; 0.003 % at 1e-4 m/s, none at 1e-9), at 1.05x the
-// step's time without the settle (1.4x at 1e-4, 1.8x at 1e-9): W's columns cost a spring solve
+// its threads' energy over 6 s (anchors on; 0.003 % at 1e-4 m/s and at 1e-9) for 5-9 % more
+// time than without the settle (40 % at 1e-4, 80 % at 1e-9): W's columns cost a spring solve
 // each, and the pile's nodes hold ~120 contact points at rest.
 constexpr Real kTrigger = 1e-3;
 // PGS sweeps over W at most, and the change of v_n (m/s) at which they stop: W is small and
