@@ -169,13 +169,17 @@ PileUnderNet::PileUnderNet(World& world) {
     rain.addContainer(world);
 }
 
+PileUnderNet::PileUnderNet(World& world, int side, Real mesh) : netSide(side), netMesh(mesh) {
+    rain.addContainer(world);
+}
+
 void PileUnderNet::feed(World& world, int step) {
     constexpr int kBodies = 60;
     if (step % 30 == 0)
         for (int k = 0; k < rain.perWave() && bodies.size() < kBodies; ++k)
             bodies.push_back(rain.addBody(world, static_cast<int>(bodies.size())));
     if (step == kNetStep) {
-        net = createNet(world, captureNet(10, 0.2, Vec3(0, 0, 3)));
+        net = createNet(world, captureNet(netSide, netMesh, Vec3(0, 0, 3)));
         for (const BodyId node : net.nodes)
             world.setDrag(node, Drag{.linear = world.massProperties(node).mass});
     }

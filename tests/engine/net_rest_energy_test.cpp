@@ -53,37 +53,62 @@ Energies energies(const World& world, const testkit::PileUnderNet& pile) {
     return e;
 }
 
+// The largest rise of the total energy over the window, and the threads' energy at its start
+// (J), of a pile under a net of `side` x `side` nodes `mesh` apart.
+struct Rise {
+    Real rise = 0;
+    Real threads = 0;
+};
+
+Rise riseAtRest(bool anchors, int side, Real mesh) {
+    WorldDef def{.timeStep = kH};
+    def.solver.frictionAnchors = anchors;
+    def.enableSleep = false;  // the energy of the motion, not of an island put to sleep
+    World world(def);
+    testkit::PileUnderNet pile(world, side, mesh);
+    Energies start;
+    Real rise = 0;
+    for (int i = 0; i < static_cast<int>(kWindowEnd / kH + 0.5); ++i) {
+        pile.feed(world, i);
+        if (!world.step().ok()) {
+            ADD_FAILURE() << "step " << i << " failed";
+            return {};
+        }
+        const int done = i + 1;
+        if (done < static_cast<int>(kWindowStart / kH + 0.5))
+            continue;
+        const Energies now = energies(world, pile);
+        if (done == static_cast<int>(kWindowStart / kH + 0.5))
+            start = now;
+        rise = std::max(rise, now.total() - start.total());
+        if (done % 60 == 0) {
+            std::printf(
+                "anchors %d t %.1f s: kinetic %.3g, gravity %.6g, threads %.6g, total %.6g J\n",
+                anchors, done * kH, now.kinetic, now.gravity, now.springs, now.total());
+        }
+    }
+    std::printf(
+        "%d x %d net, anchors %d: largest rise of the total %.4g J over %.0f-%.0f s; threads at "
+        "the start %.4g J (%.3g %%)\n",
+        side, side, anchors, rise, kWindowStart, kWindowEnd, start.springs,
+        100 * rise / start.springs);
+    return {rise, start.springs};
+}
+
 TEST(NetRestEnergy, ANetOnAPileCreatesNoEnergyAtRest) {
     for (const bool anchors : {true, false}) {
-        WorldDef def{.timeStep = kH};
-        def.solver.frictionAnchors = anchors;
-        def.enableSleep = false;  // the energy of the motion, not of an island put to sleep
-        World world(def);
-        testkit::PileUnderNet pile(world);
-        Energies start;
-        Real rise = 0;
-        for (int i = 0; i < static_cast<int>(kWindowEnd / kH + 0.5); ++i) {
-            pile.feed(world, i);
-            ASSERT_TRUE(world.step().ok());
-            const int done = i + 1;
-            if (done < static_cast<int>(kWindowStart / kH + 0.5))
-                continue;
-            const Energies now = energies(world, pile);
-            if (done == static_cast<int>(kWindowStart / kH + 0.5))
-                start = now;
-            rise = std::max(rise, now.total() - start.total());
-            if (done % 60 == 0) {
-                std::printf(
-                    "anchors %d t %.1f s: kinetic %.3g, gravity %.6g, threads %.6g, total %.6g J\n",
-                    anchors, done * kH, now.kinetic, now.gravity, now.springs, now.total());
-            }
-        }
-        std::printf(
-            "anchors %d: largest rise of the total %.4g J over %.0f-%.0f s; threads at the start "
-            "%.4g J (%.3g %%)\n",
-            anchors, rise, kWindowStart, kWindowEnd, start.springs, 100 * rise / start.springs);
-        EXPECT_LE(rise, kAllowedRise * start.springs) << "anchors " << anchors;
+        const Rise r = riseAtRest(anchors, 10, 0.2);
+        EXPECT_LE(r.rise, kAllowedRise * r.threads) << "anchors " << anchors;
     }
+}
+
+// A net whose held rows outnumber what one step settles (sprung_contacts.cpp, kMostRows: 128;
+// this 16 x 16 net holds up to 288, and 308 of the 321 settles take the worst 128), the same
+// tolerance, written before measuring. Measured, largest rise / threads: without the settle
+// 27.8 J / 104 J (26.7 %); settling every row 0 J / 31.5 J; the worst 128 0 J / 25.2 J.
+TEST(NetRestEnergy, ANetLargerThanOneSettleCreatesNoEnergyAtRest) {
+    const Rise r = riseAtRest(true, 16, 0.12);
+    EXPECT_LE(r.rise, kAllowedRise * r.threads);
 }
 
 }  // namespace

@@ -117,8 +117,12 @@ struct PileUnderNet {
     Rain rain{.half = 1, .material = soakMaterial()};
     std::vector<BodyId> bodies;  ///< the rain's, in the order made
     Lumped net;
+    int netSide = 10;    ///< nodes per side of the net
+    Real netMesh = 0.2;  ///< the net's mesh size (m)
     /// Adds the container.
     explicit PileUnderNet(World& world);
+    /// With a net of `side` x `side` nodes `mesh` apart.
+    PileUnderNet(World& world, int side, Real mesh);
     /// Adds what step `step` (counting from 0) brings; call before taking it.
     void feed(World& world, int step);
 };

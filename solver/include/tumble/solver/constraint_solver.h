@@ -108,7 +108,15 @@ private:
                      const SprungPoint& point) const;
     void applySprung(std::span<SolverBody> bodies, std::span<const ContactConstraint> constraints,
                      const SprungPoint& point, Real lambda) const;
+    /// Calls f with each body a point's normal row moves.
+    template <class F>
+    void forEachSprungBody(std::span<const ContactConstraint> constraints, const SprungPoint& point,
+                           F&& f) const;
+    /// Keeps the kMostRows points furthest from complementarity (sprung_contacts.cpp).
+    void keepWorstSprung();
     std::vector<SprungPoint> sprungPoints_;
+    std::vector<Real> sprungResidual_;        ///< each point's complementarity residual (m/s)
+    std::vector<std::uint32_t> sprungOrder_;  ///< keepWorstSprung's scratch
     std::vector<Real> sprungMatrix_;    ///< W, column-major: v_n of point k per unit impulse at j
     std::vector<Real> sprungGap_;       ///< v_n - target of each point (m/s)
     std::vector<Real> sprungDelta_;     ///< the impulse added at each point (N s)
