@@ -307,30 +307,35 @@ void SpringBlockSolver::computeUpdate(std::span<const SolverBody> bodies) {
     if (!compacted_ || !solveCompact()) {
         if (compacted_)
             loadResiduals(bodies);
-        // An inactive row's row and column of L are +0 (factor()), so its value stays +0 and
-        // its column subtracts only +0 * +0: skipping it keeps every bit (x - +0 is x, -0
-        // included). Column j of L holds rows below j only, so work_[j] is not written while
-        // its column is applied: held in a register, not loaded (or stored) again per entry.
-        for (int j = 0; j < n; ++j) {  // L y = b
-            if (!active_[rowAt_[j]])
-                continue;
-            const Real y = work_[j];
-            for (int p = lStart_[j]; p < lStart_[j + 1]; ++p)
-                work_[lIndex_[p]] -= lValue_[p] * y;
-        }
-        for (int j = 0; j < n; ++j)
-            work_[j] /= diagonal_[j];
-        for (int j = n - 1; j >= 0; --j) {  // L' x = y
-            if (!active_[rowAt_[j]])
-                continue;
-            Real x = work_[j];
-            for (int p = lStart_[j]; p < lStart_[j + 1]; ++p)
-                x -= lValue_[p] * work_[lIndex_[p]];
-            work_[j] = x;
-        }
+        solveFull();
     }
     for (int i = 0; i < n; ++i)
         delta_[i] = active_[i] ? work_[position_[i]] : 0;
+}
+
+void SpringBlockSolver::solveFull() {
+    const int n = static_cast<int>(rowCount());
+    // An inactive row's row and column of L are +0 (factor()), so its value stays +0 and its
+    // column subtracts only +0 * +0: skipping it keeps every bit (x - +0 is x, -0 included).
+    // Column j of L holds rows below j only, so work_[j] is not written while its column is
+    // applied: held in a register, not loaded (or stored) again per entry.
+    for (int j = 0; j < n; ++j) {  // L y = b
+        if (!active_[rowAt_[j]])
+            continue;
+        const Real y = work_[j];
+        for (int p = lStart_[j]; p < lStart_[j + 1]; ++p)
+            work_[lIndex_[p]] -= lValue_[p] * y;
+    }
+    for (int j = 0; j < n; ++j)
+        work_[j] /= diagonal_[j];
+    for (int j = n - 1; j >= 0; --j) {  // L' x = y
+        if (!active_[rowAt_[j]])
+            continue;
+        Real x = work_[j];
+        for (int p = lStart_[j]; p < lStart_[j + 1]; ++p)
+            x -= lValue_[p] * work_[lIndex_[p]];
+        work_[j] = x;
+    }
 }
 
 Real SpringBlockSolver::apply(std::span<SolverBody> bodies, bool clamp) {
@@ -365,23 +370,7 @@ void SpringBlockSolver::respond(std::span<SolverBody> change) {
     // computeUpdate()'s solves.
     if (!compacted_ || !solveCompact()) {
         load();
-        for (int j = 0; j < n; ++j) {
-            if (!active_[rowAt_[j]])
-                continue;
-            const Real y = work_[j];
-            for (int p = lStart_[j]; p < lStart_[j + 1]; ++p)
-                work_[lIndex_[p]] -= lValue_[p] * y;
-        }
-        for (int j = 0; j < n; ++j)
-            work_[j] /= diagonal_[j];
-        for (int j = n - 1; j >= 0; --j) {
-            if (!active_[rowAt_[j]])
-                continue;
-            Real x = work_[j];
-            for (int p = lStart_[j]; p < lStart_[j + 1]; ++p)
-                x -= lValue_[p] * work_[lIndex_[p]];
-            work_[j] = x;
-        }
+        solveFull();
     }
     for (int i = 0; i < n; ++i) {
         if (!active_[i])

@@ -146,6 +146,8 @@ private:
     /// computeUpdate()'s solves over compactPattern()'s L; false when one of its checks fails
     /// (work_ then holds nothing to keep).
     bool solveCompact();
+    /// computeUpdate()'s solves over the whole of L, on work_.
+    void solveFull();
     Real apply(std::span<SolverBody> bodies, bool clamp);
     /// Threads the active set left slack, by Gauss-Seidel: contacts solved after the set was
     /// chosen may stretch them, and nothing else would stop it.
