@@ -165,10 +165,6 @@ Material soakMaterial() {
         .friction = 0.5, .density = 700, .spinningFriction = 0.002, .rollingFriction = 0.002};
 }
 
-PileUnderNet::PileUnderNet(World& world) {
-    rain.addContainer(world);
-}
-
 PileUnderNet::PileUnderNet(World& world, int side, Real mesh) : netSide(side), netMesh(mesh) {
     rain.addContainer(world);
 }

@@ -117,12 +117,10 @@ struct PileUnderNet {
     Rain rain{.half = 1, .material = soakMaterial()};
     std::vector<BodyId> bodies;  ///< the rain's, in the order made
     Lumped net;
-    int netSide = 10;    ///< nodes per side of the net
-    Real netMesh = 0.2;  ///< the net's mesh size (m)
-    /// Adds the container.
-    explicit PileUnderNet(World& world);
-    /// With a net of `side` x `side` nodes `mesh` apart.
-    PileUnderNet(World& world, int side, Real mesh);
+    int netSide;   ///< nodes per side of the net
+    Real netMesh;  ///< the net's mesh size (m)
+    /// Adds the container; the net will have `side` x `side` nodes `mesh` apart.
+    explicit PileUnderNet(World& world, int side = 10, Real mesh = 0.2);
     /// Adds what step `step` (counting from 0) brings; call before taking it.
     void feed(World& world, int step);
 };
