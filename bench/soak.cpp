@@ -114,8 +114,11 @@ int main(int argc, char** argv) {
     const Real h = 1.0 / 60.0;
     WorldDef def{.timeStep = h};
     def.solver.frictionAnchors = anchors;
-    def.solver.iterations = biased > 0 ? biased : def.solver.iterations;
-    def.solver.relaxIterations = relax >= 0 ? relax : def.solver.relaxIterations;
+    // A budget given is the whole budget: the net's links' too.
+    if (biased > 0)
+        def.solver.iterations = def.solver.linkIterations = biased;
+    if (relax >= 0)
+        def.solver.relaxIterations = def.solver.linkRelaxIterations = relax;
     World world(def);
     // Container: a square floor of floorPerBody per body, at least 4 m wide. Waves of one layer
     // at a time, 0.4 m apart, every half second until all have fallen in.

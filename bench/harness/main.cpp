@@ -167,7 +167,10 @@ bool selected(const std::vector<std::string>& filter, const std::string& name) {
 std::string budget(const SceneSettings& s) {
     const int biased = s.tumbleIterations >= 0 ? s.tumbleIterations : s.iterations;
     const int relax = s.tumbleRelaxIterations >= 0 ? s.tumbleRelaxIterations : s.iterations;
+    const SolverSettings links;
     return std::to_string(biased) + " biased + " + std::to_string(relax) + " relax sweeps" +
+           " (with links at least " + std::to_string(links.linkIterations) + " + " +
+           std::to_string(links.linkRelaxIterations) + ")" +
            (s.colouredContacts ? ", coloured" : "");
 }
 
@@ -243,14 +246,16 @@ int main(int argc, char** argv) {
     app.add_option("--friction-anchors", anchors,
                    "Tumble's friction anchors (SolverSettings::frictionAnchors): true or false")
         ->capture_default_str();
-    int tumbleIterations = -1;
-    int tumbleRelax = -1;
-    app.add_option("--tumble-iterations", tumbleIterations,
-                   "Tumble's biased sweeps (default: as many as the peers' iterations)")
-        ->check(CLI::PositiveNumber);
-    app.add_option("--tumble-relax", tumbleRelax,
-                   "Tumble's relax sweeps (default: as many as the peers' iterations)")
-        ->check(CLI::NonNegativeNumber);
+    // Tumble runs its own default budget, as each peer its own (a world with links -- the nets
+    // -- takes SolverSettings::linkIterations' as every world does).
+    int tumbleIterations = SolverSettings{}.iterations;
+    int tumbleRelax = SolverSettings{}.relaxIterations;
+    app.add_option("--tumble-iterations", tumbleIterations, "Tumble's biased sweeps")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    app.add_option("--tumble-relax", tumbleRelax, "Tumble's relax sweeps")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
     double tumbleTolerance = SolverSettings{}.tolerance;
     app.add_option("--tumble-tolerance", tumbleTolerance,
                    "Tumble's early exit from the sweeps (SolverSettings::tolerance, m/s; 0 runs "

@@ -45,8 +45,9 @@ struct SceneSettings {
     bool colouredContacts = SolverSettings{}.colouredContacts;
     /// Tumble only: SolverSettings::frictionAnchors.
     bool frictionAnchors = SolverSettings{}.frictionAnchors;
-    /// Tumble only: its biased and relax sweeps (the sweep-budget study, bench/README.md); a
-    /// negative count runs `iterations` of each, as Bullet runs its split-impulse pass.
+    /// Tumble only: its biased and relax sweeps (tumble-bench's table passes Tumble's defaults);
+    /// a negative count runs `iterations` of each, matched to the peers' as Bullet runs its
+    /// split-impulse pass (the sweep's runs).
     int tumbleIterations = -1;
     int tumbleRelaxIterations = -1;
     /// Tumble only: SolverSettings::tolerance, the sweeps' early exit (m/s; 0 runs them all).

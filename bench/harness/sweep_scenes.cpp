@@ -178,6 +178,8 @@ Trajectory runChain(const Peer& peer, double h, int iterations, double duration,
         def.enableSleep = false;
         def.solver.iterations = iterations;
         def.solver.relaxIterations = iterations;
+        def.solver.linkIterations = iterations;
+        def.solver.linkRelaxIterations = iterations;
         World world(def);
         std::vector<BodyId> beads;
         for (const Vec3& p : model.position)

@@ -81,6 +81,10 @@ private:
         def.solver.iterations = s.tumbleIterations >= 0 ? s.tumbleIterations : s.iterations;
         def.solver.relaxIterations =
             s.tumbleRelaxIterations >= 0 ? s.tumbleRelaxIterations : s.iterations;
+        if (s.tumbleIterations < 0) {  // matched to the peers': the links' too
+            def.solver.linkIterations = s.iterations;
+            def.solver.linkRelaxIterations = s.iterations;
+        }
         def.solver.tolerance = s.tumbleTolerance;
         def.enableSleep = false;  // every engine simulates every body
         def.solver.colouredContacts = s.colouredContacts;

@@ -73,7 +73,7 @@ int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ost
     run->add_option("--time", time, "Simulated time T (s), instead of the scene's duration");
     run->add_option("--dt", dt, "Time step H (s), instead of world.timeStep");
     run->add_option("--iterations", iterations,
-                    "PGS iterations K, instead of world.solver.iterations");
+                    "PGS iterations K, instead of world.solver.iterations and linkIterations");
     run->add_option("--set", sets,
                     "Override a scene value by its dotted path: key=value "
                     "(e.g. world.solver.iterations=20); repeatable")
@@ -145,8 +145,10 @@ int runCommand(const std::vector<std::string>& args, std::ostream& out, std::ost
         // The command-line shortcuts are overrides like --set, applied last so they win.
         if (run->count("--dt") != 0)
             sets.push_back("world.timeStep=" + number(dt));
-        if (run->count("--iterations") != 0)
+        if (run->count("--iterations") != 0) {
             sets.push_back("world.solver.iterations=" + std::to_string(iterations));
+            sets.push_back("world.solver.linkIterations=" + std::to_string(iterations));
+        }
         if (run->count("--time") != 0)
             sets.push_back("duration=" + number(time));
         const Scene loaded = loadScene(scene, sets, directory);

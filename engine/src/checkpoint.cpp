@@ -42,11 +42,11 @@ void field(Ar& a, MassProperties& x) {
 }
 template <typename Ar>
 void field(Ar& a, SolverSettings& x) {
-    fields(a, x.iterations, x.relaxIterations, x.tolerance, x.relaxation, x.friction,
-           x.stabilisation, x.baumgarte, x.splitImpulseFactor, x.slop, x.restitutionThreshold,
-           x.warmStart, x.springSolve, x.projectSprings, x.jointGeometricStiffness, x.jointSolve,
-           x.frictionAnchors, x.colouredContacts, x.softSubsteps, x.contactHertz,
-           x.contactDampingRatio, x.maxPushOutSpeed);
+    fields(a, x.iterations, x.relaxIterations, x.linkIterations, x.linkRelaxIterations, x.tolerance,
+           x.relaxation, x.friction, x.stabilisation, x.baumgarte, x.splitImpulseFactor, x.slop,
+           x.restitutionThreshold, x.warmStart, x.springSolve, x.projectSprings,
+           x.jointGeometricStiffness, x.jointSolve, x.frictionAnchors, x.colouredContacts,
+           x.softSubsteps, x.contactHertz, x.contactDampingRatio, x.maxPushOutSpeed);
 }
 template <typename Ar>
 void field(Ar& a, WorldDef& x) {

@@ -248,6 +248,9 @@ void bindSettings(py::module_& m) {
     Struct<SolverSettings>(m, "SolverSettings", "The constraint solver's settings.")
         .field("iterations", &SolverSettings::iterations, ">= 1")
         .field("relax_iterations", &SolverSettings::relaxIterations, ">= 0")
+        .field("link_iterations", &SolverSettings::linkIterations,
+               ">= 1: at least these many in a solve with springs, joints or thread contacts")
+        .field("link_relax_iterations", &SolverSettings::linkRelaxIterations, ">= 0: likewise")
         .field("tolerance", &SolverSettings::tolerance, "(m/s), >= 0")
         .field("relaxation", &SolverSettings::relaxation, "in (0, 2)")
         .field("friction", &SolverSettings::friction, "FrictionModel")

@@ -26,6 +26,9 @@ SolverSettings parseSolver(JsonObject o) {
     SolverSettings s;
     s.iterations = o.integer("iterations", s.iterations, 1, kMaxIterations);
     s.relaxIterations = o.integer("relaxIterations", s.relaxIterations, 0, kMaxIterations);
+    s.linkIterations = o.integer("linkIterations", s.linkIterations, 1, kMaxIterations);
+    s.linkRelaxIterations =
+        o.integer("linkRelaxIterations", s.linkRelaxIterations, 0, kMaxIterations);
     s.tolerance = o.positive("tolerance", s.tolerance, true);
     s.relaxation = o.number("relaxation", s.relaxation);
     const std::string friction = o.choice("friction", "coupled", {"coupled", "box"});

@@ -30,9 +30,17 @@ SolverStats ConstraintSolver::solve(std::span<SolverBody> bodies,
             std::max(held, prepare(bodies, constraints, springs, joints, h, settings));
         jointBias_ = velocityBias;
     });
+    // Links converge more slowly than rigid contacts: a solve holding any runs the links' budget
+    // if it is the larger (SolverSettings::linkIterations).
+    const bool links =
+        !springs.empty() || !joints.empty() || !segments.empty() || !sprungPushOut_.empty();
+    biasedSweeps_ =
+        links ? std::max(settings.iterations, settings.linkIterations) : settings.iterations;
+    relaxSweeps_ = links ? std::max(settings.relaxIterations, settings.linkRelaxIterations)
+                         : settings.relaxIterations;
     profile_.velocity = timed([&] {
         stats.iterations =
-            runSweeps(bodies, constraints, springs, settings, inverseH, bias, settings.iterations);
+            runSweeps(bodies, constraints, springs, settings, inverseH, bias, biasedSweeps_);
     });
     profile_.relax =
         timed([&] { relax(bodies, constraints, springs, pseudo, settings, inverseH); });
@@ -108,8 +116,7 @@ void ConstraintSolver::relax(std::span<SolverBody> bodies, std::span<ContactCons
         const bool springsOnly = directSprings_ && springBlock_.ready() && constraints.empty() &&
                                  segments_.empty() && joints_.empty();
         if (!springsOnly)
-            runSweeps(bodies, constraints, springs, settings, inverseH, 0,
-                      settings.relaxIterations);
+            runSweeps(bodies, constraints, springs, settings, inverseH, 0, relaxSweeps_);
         for (std::size_t i = 0; i < bodies.size(); ++i) {
             pseudo[i].linear -= bodies[i].linearVelocity;
             pseudo[i].angular -= bodies[i].angularVelocity;
@@ -127,14 +134,13 @@ void ConstraintSolver::correctPositions(std::span<const SolverBody> bodies,
     loadPseudoBodies(bodies, pseudo, pseudoBodies_);
     if (!joints_.empty())
         solveJointPositions(pseudoBodies_, joints_, settings.splitImpulseFactor, inverseH,
-                            settings.iterations);
+                            biasedSweeps_);
     if (!sprungPushOut_.empty())
         sprungPushOut_.solve(pseudoBodies_, constraints, settings.splitImpulseFactor, inverseH,
-                             settings.slop, settings.iterations);
+                             settings.slop, biasedSweeps_);
     if (segmentPositions_)
         solveSegmentPositions(pseudoBodies_, segments_, springs_, threadPulls_,
-                              settings.splitImpulseFactor, inverseH, settings.slop,
-                              settings.iterations);
+                              settings.splitImpulseFactor, inverseH, settings.slop, biasedSweeps_);
     storePseudoBodies(pseudoBodies_, pseudo);
 }
 

@@ -209,6 +209,10 @@ void checkSolverSettings(const SolverSettings& s) {
         fail("SolverSettings.iterations = ", s.iterations, " must be >= 1");
     if (s.relaxIterations < 0)
         fail("SolverSettings.relaxIterations = ", s.relaxIterations, " must be >= 0");
+    if (s.linkIterations < 1)
+        fail("SolverSettings.linkIterations = ", s.linkIterations, " must be >= 1");
+    if (s.linkRelaxIterations < 0)
+        fail("SolverSettings.linkRelaxIterations = ", s.linkRelaxIterations, " must be >= 0");
     if (!(std::isfinite(s.tolerance) && s.tolerance >= 0)) {
         fail("SolverSettings.tolerance = ", s.tolerance, " (m/s) must be finite and >= 0");
     }

@@ -282,6 +282,8 @@ TEST(Checkpoint, EverySettingRoundTrips) {
     SolverSettings& v = def.solver;
     v.iterations = 7;
     v.relaxIterations = 5;
+    v.linkIterations = 12;
+    v.linkRelaxIterations = 3;
     v.tolerance = 1e-6;
     v.relaxation = 1.2;
     v.friction = FrictionModel::Box;
@@ -327,6 +329,8 @@ TEST(Checkpoint, EverySettingRoundTrips) {
     const SolverSettings& w = r.solver;
     EXPECT_EQ(w.iterations, v.iterations);
     EXPECT_EQ(w.relaxIterations, v.relaxIterations);
+    EXPECT_EQ(w.linkIterations, v.linkIterations);
+    EXPECT_EQ(w.linkRelaxIterations, v.linkRelaxIterations);
     EXPECT_EQ(w.tolerance, v.tolerance);
     EXPECT_EQ(w.relaxation, v.relaxation);
     EXPECT_EQ(w.friction, v.friction);

@@ -106,9 +106,61 @@ TEST(ContactResponse, BadSolverSettingsAreRefusedByTheWorld) {
     bad.relaxIterations = -2;
     EXPECT_TRUE(
         test::contains(test::refusal([&] { world.setSolverSettings(bad); }), "relaxIterations"));
+    bad = before;
+    bad.linkIterations = 0;
+    EXPECT_TRUE(
+        test::contains(test::refusal([&] { world.setSolverSettings(bad); }), "linkIterations"));
+    bad = before;
+    bad.linkRelaxIterations = -1;
+    EXPECT_TRUE(test::contains(test::refusal([&] { world.setSolverSettings(bad); }),
+                               "linkRelaxIterations"));
     EXPECT_EQ(world.settings().solver.iterations, before.iterations);
     EXPECT_EQ(world.settings().solver.slop, before.slop);
     EXPECT_EQ(world.settings().solver.relaxIterations, before.relaxIterations);
+    EXPECT_EQ(world.settings().solver.linkIterations, before.linkIterations);
+}
+
+// A solve of rigid contacts runs the contacts' budget; one holding a link -- a spring, a joint --
+// runs the links' where it is the larger, and the contacts' where that is (SolverSettings::
+// linkIterations). The physics the links' budget buys is asserted where it matters:
+// Joints.HingeLimitStopsTheSwing and ThreadRestThinWall.LandsWithoutKicks fail at 8 + 4.
+TEST(ContactResponse, ASolveWithLinksRunsTheLinksBudget) {
+    const auto sweeps = [](SolverSettings settings, bool spring, bool joint) {
+        WorldDef worldDef;
+        worldDef.enableSleep = false;
+        worldDef.solver = settings;
+        World world(worldDef);
+        const BodyId box = world.createBody(BodyDef{.position = Vec3(0, 0, 0.49)});
+        world.createShape(box, ShapeDef{.geometry = Box{Vec3(0.5, 0.5, 0.5)}});
+        const BodyId ground = world.createBody(BodyDef{.type = BodyType::Static});
+        world.createShape(ground, ShapeDef{.geometry = HalfSpace{}});
+        const BodyId bob = world.createBody(BodyDef{.position = Vec3(3, 0, 2)});
+        world.createShape(bob, ShapeDef{.geometry = Sphere{0.1}});
+        if (spring) {
+            SpringDef def;
+            def.bodyA = bob;
+            def.localAnchorB = Vec3(3, 0, 3);
+            def.stiffness = 100;
+            world.createSpring(def);
+        }
+        if (joint) {
+            world.createJoint(JointDef{
+                .type = JointType::Ball, .bodyA = bob, .bodyB = {}, .anchor = Vec3(3, 0, 3)});
+        }
+        EXPECT_TRUE(world.step().ok());
+        return world.solverStats().iterations;
+    };
+    const SolverSettings defaults;
+    EXPECT_EQ(sweeps(defaults, false, false), defaults.iterations);
+    EXPECT_EQ(sweeps(defaults, true, false), defaults.linkIterations);
+    EXPECT_EQ(sweeps(defaults, false, true), defaults.linkIterations);
+    SolverSettings more = defaults;
+    more.iterations = 15;  // the contacts' budget, larger, is the budget of every solve
+    EXPECT_EQ(sweeps(more, false, false), 15);
+    EXPECT_EQ(sweeps(more, true, false), 15);
+    SolverSettings fewer = defaults;
+    fewer.linkIterations = 3;  // links cheaper than contacts: the contacts' budget
+    EXPECT_EQ(sweeps(fewer, true, true), defaults.iterations);
 }
 
 }  // namespace

@@ -220,6 +220,8 @@ TEST_P(ThreadContact, AWarmStepAllocatesNothingUnderOtherSolverSettings) {
         settings.tolerance = v.tolerance;
         settings.iterations = v.iterations;
         settings.relaxIterations = v.relaxIterations;
+        settings.linkIterations = v.iterations;  // a thread's world runs the links' budget
+        settings.linkRelaxIterations = v.relaxIterations;
         world.setSolverSettings(settings);
         ASSERT_TRUE(testkit::simulate(world, 60));
         const bool awake = world.isAwake(d.a);

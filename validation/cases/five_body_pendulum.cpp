@@ -61,6 +61,8 @@ Drift swing(double seconds, int iterations, double h = 1.0 / 240.0, int substeps
     settings.enableSleep = false;
     settings.solver.iterations = iterations;
     settings.solver.relaxIterations = iterations;
+    settings.solver.linkIterations = iterations;  // the links' budget is the one studied
+    settings.solver.linkRelaxIterations = iterations;
     World world(settings);
     BodyDef baseDef;
     baseDef.type = BodyType::Static;

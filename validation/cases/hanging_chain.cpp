@@ -61,6 +61,8 @@ ChainRun runChain(int n, double h, double periods, int iterations) {
     settings.enableSleep = false;
     settings.solver.iterations = iterations;
     settings.solver.relaxIterations = iterations;
+    settings.solver.linkIterations = iterations;  // the links' budget is the one studied
+    settings.solver.linkRelaxIterations = iterations;
     World world(settings);
     std::vector<BodyId> masses;
     std::vector<double> massOf;

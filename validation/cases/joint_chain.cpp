@@ -41,6 +41,8 @@ ChainResult hang(double seconds, int iterations) {
     settings.enableSleep = false;
     settings.solver.iterations = iterations;
     settings.solver.relaxIterations = iterations;
+    settings.solver.linkIterations = iterations;  // the links' budget is the one studied
+    settings.solver.linkRelaxIterations = iterations;
     World world(settings);
     const double tilt = 30 * std::numbers::pi / 180;
     const Vec3 down(std::sin(tilt), 0, -std::cos(tilt));

@@ -20,7 +20,7 @@
 namespace tumble {
 
 /// Format version written by this build; files of any other version are refused.
-inline constexpr std::uint32_t kCheckpointVersion = 13;
+inline constexpr std::uint32_t kCheckpointVersion = 14;
 
 /// The checkpoint of `world` as bytes (header and payload, as written to a file).
 std::vector<std::uint8_t> checkpointBytes(const World& world);

@@ -5,9 +5,10 @@
 ///   prepare    effective masses and warm start of every row, bounces (restitution targets
 ///              of the contact rows), the contact groups solved exactly; the springs' and the
 ///              ball joints' block factorisations; the joints' geometric stiffness
-///   velocity   `iterations` PGS sweeps: springs, joints, contacts (biased under split impulse)
-///   relax      split impulse: `relaxIterations` sweeps without the bias; the difference is
-///              the pseudo-velocity
+///   velocity   `iterations` PGS sweeps: springs, joints, contacts (biased under split impulse);
+///              `linkIterations` if larger and the solve holds springs, joints or thread contacts
+///   relax      split impulse: `relaxIterations` (or `linkRelaxIterations`) sweeps without the
+///              bias; the difference is the pseudo-velocity
 ///   residual   the contacts' complementarity residual after the sweeps
 ///   positions  split impulse's position pass of the joints, the thread contacts and the
 ///              contacts without pushOut on the pseudo-velocities
@@ -90,9 +91,11 @@ private:
     std::span<const SpringRow> springs_;     ///< of the solve in progress
     std::vector<ThreadPull> threadPulls_;    ///< solveSegmentPositions' scratch
     bool segmentPositions_ = false;          ///< their push-out goes to a position pass
-    Real jointBias_ = 0;                     ///< their bias in the velocity sweeps (Baumgarte only)
-    std::vector<Mat3> geometricStiffness_;   ///< scratch of applyJointGeometricStiffness
-    SpringBlockSolver jointBlock_;           ///< ball joints' point rows (jointSolve Direct)
+    int biasedSweeps_ = 0;                   ///< this solve's budget: the links' when it holds any
+    int relaxSweeps_ = 0;
+    Real jointBias_ = 0;                    ///< their bias in the velocity sweeps (Baumgarte only)
+    std::vector<Mat3> geometricStiffness_;  ///< scratch of applyJointGeometricStiffness
+    SpringBlockSolver jointBlock_;          ///< ball joints' point rows (jointSolve Direct)
     std::vector<SpringRow> jointBlockRows_;
     bool directJoints_ = false;             ///< this step's ball joints go through jointBlock_
     std::vector<SolverBody> pseudoBodies_;  ///< the joints' position pass works on these
