@@ -279,30 +279,15 @@ void SolveStage::markSprung(const BodyStore& bodies, const SpringStore& springs)
 // step. A net node (20 g) on a thread of 1e4 N/m pulled back 10 um (the deadband) gets 0.1 N,
 // half its weight, and 0.08 m/s a step: the soak's net kept jittering at that speed with anchors
 // on and held its pile (one island, 1,382 bodies at 1,000) awake for good.
-//
-// So is a body touching such a body (a box under a net): the pass moved it into the net's nodes,
-// whose held contacts pushed them out the next step without the threads' consent (sprung_push_
-// out.h), and the threads stretched a little every step. A 10 x 10 net resting on a pile gained
-// 7.5 mJ over 6 s (0.15 % of its threads' energy) with those boxes anchored, none without.
 void SolveStage::holdAnchors(const BodyStore& bodies, const ContactManager& contacts,
                              std::span<const ContactConstraint> constraints,
                              const StepContext& context, const AnchorLengths& lengths) {
     anchors_.beginSolve();
     anchorDrifts_.assign(4 * constraints.size(), Vec3::Zero());
     slipping_.assign(constraints.size(), kUnmeasured);
-    // A contact pushes no depth out exactly when a spring ends on one of its bodies (run()).
-    besideSprung_.assign(sprung_.begin(), sprung_.end());
-    for (const ContactConstraint& c : constraints) {
-        if (c.pushOut)
-            continue;
-        for (const std::uint32_t k : {c.bodyA, c.bodyB}) {
-            if (solverBodies_[k].inverseMass > 0)
-                besideSprung_[k] = 1;
-        }
-    }
     for (std::size_t j = 0; j < constraints.size(); ++j) {
         const ContactConstraint& c = constraints[j];
-        if (besideSprung_[c.bodyA] != 0 || besideSprung_[c.bodyB] != 0)
+        if (sprung_[c.bodyA] != 0 || sprung_[c.bodyB] != 0)
             continue;
         slipping_[j] = AnchorTable::slips(c) ? 1 : 0;
         if (slipping_[j] != 0)

@@ -124,8 +124,8 @@ private:
     /// Reads this step's rowBodies_: after buildSpringRows. Left as it was without contacts.
     void markSprung(const BodyStore& bodies, const SpringStore& springs);
     /// Friction anchors (split impulse): this solve's drifts and the anchor pass on pseudo_.
-    /// Contacts of a body a spring holds (sprung_, marked by run()), or of one touching such a
-    /// body, are left out (see the definition).
+    /// Contacts of a body a spring holds (sprung_, marked by run()) are left out (see the
+    /// definition).
     void holdAnchors(const BodyStore& bodies, const ContactManager& contacts,
                      std::span<const ContactConstraint> constraints, const StepContext& context,
                      const AnchorLengths& lengths);
@@ -169,10 +169,9 @@ private:
     FrictionAnchorPass anchorPass_;
     std::vector<Vec3> anchorDrifts_;  ///< 4 per constraint
     std::vector<char> sprung_;        ///< by solver body: a spring ends on it
-    std::vector<char> besideSprung_;  ///< holdAnchors': sprung_ or touching a sprung body
     /// By constraint: AnchorTable::slips() as the anchor pass found it (1 slips, 0 sticks), for
     /// storeImpulses' release (taken again there, it was 0.3 % of pyramid-20); kUnmeasured
-    /// where the pass left the constraint out without it (a sprung body or one touching it).
+    /// where the pass left the constraint out without it (a sprung body).
     std::vector<char> slipping_;
     static constexpr char kUnmeasured = 2;
     // The soft step.
