@@ -50,8 +50,11 @@ std::pair<Real, Real> closestParameters(const Segment& a, const Segment& b) {
 namespace {
 
 /// Capsules whose axes make an angle with sine below this are treated as parallel and touch
-/// along a line: two points, so a capsule lying on another does not rock about one point.
-constexpr Real kParallelSine = 1e-3;
+/// along a line: two points, so a capsule lying on another does not rock about one point. As
+/// collide_convex.cpp's kSegmentSin: at 1e-3 a capsule lying on another at 0.5 degrees was held
+/// by one point that ran the overlap's length as it turned; the ends' sideways offset changes
+/// their depth by its square over the radii only.
+constexpr Real kParallelSine = 0.02;
 
 Segment capsuleSegment(const Capsule& capsule, const Transform& pose) {
     const Vec3 half = pose.rotation * Vec3(0, 0, capsule.halfLength);
