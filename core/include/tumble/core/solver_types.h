@@ -27,10 +27,14 @@ enum class SpringSolve : std::uint8_t {
 };
 
 struct SolverSettings {
-    int iterations = 10;  ///< PGS sweeps over the velocity rows, >= 1
+    /// PGS sweeps over the velocity rows of a solve of rigid contacts, >= 1. 8 + 4 is the
+    /// cheapest budget that keeps every rigid-contact test and validation case (7 biased sweeps
+    /// sank a millimetre box and a mesh crease; bench/README.md, "The sweep budget").
+    int iterations = 8;
     /// Split impulse: sweeps without the bias after the biased ones, removing the push-out
-    /// velocity, >= 0. Too few leave some of it in the real velocity.
-    int relaxIterations = 10;
+    /// velocity, >= 0. Too few leave some of it in the real velocity, and bodies settling under
+    /// a push-out bounce (bench/README.md, "The sweep budget").
+    int relaxIterations = 4;
     /// A solve that holds links -- springs, joints, thread contacts -- runs at least these
     /// many biased and relax sweeps (the larger of these and the counts above), >= 1 and >= 0:
     /// a hinge's limit overshoots and a net landing on a wall's edge kicks at 8 + 4, not at
