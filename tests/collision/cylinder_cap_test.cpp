@@ -8,6 +8,7 @@
 #include <numbers>
 #include <vector>
 
+#include "exact_support.h"
 #include "tumble/collision/narrowphase.h"
 
 namespace tumble {
@@ -25,21 +26,11 @@ Transform pose(Real px, Real py, Real pz, Real qw, Real qx, Real qy, Real qz) {
 Quat about(const Vec3& axis, Real angle) {
     return Quat(Eigen::AngleAxis<Real>(angle, axis.normalized()));
 }
-/// The exact support point of a cylinder (not the inscribed cap polygon).
-Vec3 support(const Cylinder& c, const Transform& t, const Vec3& direction) {
-    const Vec3 d = t.rotation.conjugate() * direction;
-    Vec3 s(0, 0, d.z() >= 0 ? c.halfLength : -c.halfLength);
-    const Real radial = std::hypot(d.x(), d.y());
-    if (radial > 0) {
-        s.x() = c.radius * d.x() / radial;
-        s.y() = c.radius * d.y() / radial;
-    }
-    return t.apply(s);
-}
+using test::cylinderSupport;
 /// Separation of two cylinders along n (A to B): negative overlap of their projections.
 Real separationAlong(const Cylinder& a, const Transform& poseA, const Cylinder& b,
                      const Transform& poseB, const Vec3& n) {
-    return n.dot(support(b, poseB, -n)) - n.dot(support(a, poseA, n));
+    return n.dot(cylinderSupport(b, poseB, -n)) - n.dot(cylinderSupport(a, poseA, n));
 }
 Real deepest(const Manifold& m) {
     Real s = m.points[0].separation;

@@ -11,6 +11,7 @@
 #include <random>
 #include <variant>
 
+#include "exact_support.h"
 #include "tumble/collision/narrowphase.h"
 #include "tumble/world.h"
 
@@ -27,14 +28,7 @@ Vec3 support(const Shape& shape, const Transform& t, const Vec3& direction) {
         const Vec3 end(0, 0, d.z() >= 0 ? capsule->halfLength : -capsule->halfLength);
         return t.apply(end + capsule->radius * d.normalized());
     }
-    const Cylinder& c = std::get<Cylinder>(shape);
-    Vec3 s(0, 0, d.z() >= 0 ? c.halfLength : -c.halfLength);
-    const Real radial = std::hypot(d.x(), d.y());
-    if (radial > 0) {
-        s.x() = c.radius * d.x() / radial;
-        s.y() = c.radius * d.y() / radial;
-    }
-    return t.apply(s);
+    return test::cylinderSupport(std::get<Cylinder>(shape), t, direction);
 }
 
 Real radiusOf(const Shape& shape) {
