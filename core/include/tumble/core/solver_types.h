@@ -27,9 +27,9 @@ enum class SpringSolve : std::uint8_t {
 };
 
 struct SolverSettings {
-    /// PGS sweeps over the velocity rows of a solve of rigid contacts, >= 1. 8 + 4 is the
-    /// cheapest budget that keeps every rigid-contact test and validation case (7 biased sweeps
-    /// sank a millimetre box and a mesh crease; bench/README.md, "The sweep budget").
+    /// PGS sweeps over the velocity rows of a solve of rigid contacts, >= 1. 8 + 4 keeps every
+    /// rigid-contact test and validation case; 7 biased sweeps failed the millimetre cube and
+    /// mesh crease tests (bench/README.md, "The sweep budget").
     int iterations = 8;
     /// Split impulse: sweeps without the bias after the biased ones, removing the push-out
     /// velocity, >= 0. Too few leave some of it in the real velocity, and bodies settling under
