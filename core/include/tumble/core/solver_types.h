@@ -27,18 +27,20 @@ enum class SpringSolve : std::uint8_t {
 };
 
 struct SolverSettings {
-    /// PGS sweeps over the velocity rows of a solve of rigid contacts, >= 1. 8 + 4 keeps every
-    /// rigid-contact test and validation case; 7 biased sweeps failed the millimetre cube and
-    /// mesh crease tests (bench/README.md, "The sweep budget").
-    int iterations = 8;
+    /// PGS sweeps over the velocity rows of a solve of rigid contacts, >= 1. An unconverged
+    /// solve lets a column's tilt grow: 20 cubes built 2 cm out of line fell within 20 s at
+    /// 8 + 4 and swayed 6 cm at 10 + 8, 5 mm at 10 + 10; built exactly, they fell after 62 s at
+    /// 8 + 4 (bench/README.md, "A column falls at 8 + 4").
+    int iterations = 10;
     /// Split impulse: sweeps without the bias after the biased ones, removing the push-out
     /// velocity, >= 0. Too few leave some of it in the real velocity, and bodies settling under
     /// a push-out bounce (bench/README.md, "The sweep budget").
-    int relaxIterations = 4;
+    int relaxIterations = 10;
     /// A solve that holds links -- springs, joints, thread contacts -- runs at least these
     /// many biased and relax sweeps (the larger of these and the counts above), >= 1 and >= 0:
     /// a hinge's limit overshoots and a net landing on a wall's edge kicks at 8 + 4, not at
-    /// 10 + 10. A scene pays for them only when it models links. Their position pass runs
+    /// 10 + 10. Equal to the contacts' by default; a scene that lowers the contacts' budget
+    /// pays for these only where it models links. Their position pass runs
     /// linkIterations sweeps too.
     int linkIterations = 10;
     int linkRelaxIterations = 10;
