@@ -77,13 +77,13 @@ void prepareAngularFriction(const SolverBody& a, const SolverBody& b, ContactCon
     c.angularImpulse = warmStart ? Vec3(spinPart * c.normal + rollingPart) : Vec3::Zero();
 }
 
-// K = (1/mA + 1/mB) 1 - [rA]x IA^-1 [rA]x - [rB]x IB^-1 [rB]x: velocity change at the point per
-// unit impulse. Its projection on the tangent plane is the coupled friction block.
-Mat3 pointMassMatrix(const SolverBody& a, const SolverBody& b, const ContactConstraintPoint& p) {
-    const Mat3 skewA = skew(p.rA);
-    const Mat3 skewB = skew(p.rB);
-    return (a.inverseMass + b.inverseMass) * Mat3::Identity() - skewA * a.inverseInertia * skewA -
-           skewB * b.inverseInertia * skewB;
+// The angular part of d' K e for a point's mass matrix K = (1/mA + 1/mB) 1 - [rA]x IA^-1 [rA]x
+// - [rB]x IB^-1 [rB]x (velocity change at the point per unit impulse): with [r]x d = r x d and
+// [r]x skew, -d' [r]x I^-1 [r]x e = (r x d)' I^-1 (r x e), the rows' angular parts. Its tangent
+// block is the coupled friction's.
+inline Real pointMass(const Vec3& angularA, const Vec3& impulseA, const Vec3& angularB,
+                      const Vec3& impulseB) {
+    return angularA.dot(impulseA) + angularB.dot(impulseB);
 }
 
 }  // namespace
@@ -280,25 +280,32 @@ TUMBLE_LANE_KERNEL void prepareManifold(const SolverBody& a, const SolverBody& b
         deepestPenetration = std::max(deepestPenetration, -p.separation);
         if (!support)
             p.supportSpeed = 0;
-        const Mat3 k = pointMassMatrix(a, b, p);
-        const Real kNormal = c.normal.dot(k * c.normal);
-        p.normalMass = kNormal > 0 ? 1 / kNormal : 0;
-        Mat2 kTangent;
-        for (int r = 0; r < 2; ++r) {
-            for (int col = 0; col < 2; ++col)
-                kTangent(r, col) = c.tangents[r].dot(k * c.tangents[col]);
-        }
         p.angularA = p.rA.cross(c.normal);
         p.angularB = p.rB.cross(c.normal);
         p.angularImpulseA = a.inverseInertia * p.angularA;
         p.angularImpulseB = b.inverseInertia * p.angularB;
-        setDisc(p.tangent, kTangent);
         for (int r = 0; r < 2; ++r) {
             p.tangentAngularA[r] = p.rA.cross(c.tangents[r]);
             p.tangentAngularB[r] = p.rB.cross(c.tangents[r]);
             p.tangentImpulseA[r] = a.inverseInertia * p.tangentAngularA[r];
             p.tangentImpulseB[r] = b.inverseInertia * p.tangentAngularB[r];
         }
+        // d' K e for the point's mass matrix K (pointMass says why this is K), from the rows
+        // just formed: the 3 x 3 K itself, two triple products a point, was a third of this
+        // pass's instructions on pyramid-20 (callgrind: 145 -> 97 M over 2 s).
+        const Real inverseMass = a.inverseMass + b.inverseMass;
+        const Real kNormal =
+            inverseMass + pointMass(p.angularA, p.angularImpulseA, p.angularB, p.angularImpulseB);
+        p.normalMass = kNormal > 0 ? 1 / kNormal : 0;
+        Mat2 kTangent;
+        for (int r = 0; r < 2; ++r) {
+            kTangent(r, r) = inverseMass + pointMass(p.tangentAngularA[r], p.tangentImpulseA[r],
+                                                     p.tangentAngularB[r], p.tangentImpulseB[r]);
+        }
+        kTangent(0, 1) = pointMass(p.tangentAngularA[0], p.tangentImpulseA[1], p.tangentAngularB[0],
+                                   p.tangentImpulseB[1]);
+        kTangent(1, 0) = kTangent(0, 1);  // symmetric to the bit
+        setDisc(p.tangent, kTangent);
         p.tangentMass = {1 / kTangent(0, 0), 1 / kTangent(1, 1)};
         p.approachSpeed = relativeVelocity(a, b, p).dot(c.normal);
         const Impact impact =
