@@ -28,9 +28,9 @@ enum class SpringSolve : std::uint8_t {
 
 struct SolverSettings {
     /// PGS sweeps over the velocity rows of a solve of rigid contacts, >= 1. An unconverged
-    /// solve lets a column's tilt grow: 20 cubes built 2 cm out of line fell within 20 s at
-    /// 8 + 4 and swayed 6 cm at 10 + 8, 5 mm at 10 + 10; built exactly, they fell after 62 s at
-    /// 8 + 4 (bench/README.md, "A column falls at 8 + 4").
+    /// solve lets a column's tilt grow: 20 cubes built exactly fell after 62 s at 8 + 4 and
+    /// stand at 10 + 10; built 2 cm out of line they fell within 20 s at 8 + 4 and sway by
+    /// centimetres at 10 + 10 (bench/README.md, "A column falls at 8 + 4").
     int iterations = 10;
     /// Split impulse: sweeps without the bias after the biased ones, removing the push-out
     /// velocity, >= 0. Too few leave some of it in the real velocity, and bodies settling under
